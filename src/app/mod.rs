@@ -1,0 +1,1 @@
+//! The eframe app: modes, keys, overlays, presenter view.

@@ -1,0 +1,79 @@
+//! One error type for everything a file can get wrong: the file, the 1-based line and column,
+//! and a message. Every loader (decks, scenes, problems, tableaux, shaders) reports through it,
+//! so the app shows and `lectern check` prints them the same way.
+
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Diagnostic {
+    pub file: PathBuf,
+    /// 1-based; 0 when the problem has no position (e.g. the file is missing).
+    pub line: usize,
+    /// 1-based; 0 when the problem has no position.
+    pub col: usize,
+    pub message: String,
+}
+
+impl Diagnostic {
+    pub fn new(
+        file: impl Into<PathBuf>,
+        line: usize,
+        col: usize,
+        message: impl Into<String>,
+    ) -> Self {
+        Self {
+            file: file.into(),
+            line,
+            col,
+            message: message.into(),
+        }
+    }
+
+    /// A problem with the whole file (unreadable, missing, a value out of range with no span).
+    pub fn whole_file(file: impl Into<PathBuf>, message: impl Into<String>) -> Self {
+        Self::new(file, 0, 0, message)
+    }
+
+    /// Converts a `ron` parse error, which carries a 1-based position.
+    pub fn from_ron(file: &Path, err: &ron::error::SpannedError) -> Self {
+        Self::new(
+            file,
+            err.span.start.line,
+            err.span.start.col,
+            err.code.to_string(),
+        )
+    }
+}
+
+impl fmt::Display for Diagnostic {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.line == 0 {
+            write!(f, "{}: {}", self.file.display(), self.message)
+        } else {
+            write!(
+                f,
+                "{}:{}:{}: {}",
+                self.file.display(),
+                self.line,
+                self.col,
+                self.message
+            )
+        }
+    }
+}
+
+impl std::error::Error for Diagnostic {}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ron_error_keeps_line_and_column() {
+        let err = ron::from_str::<Vec<u32>>("[1,\n 2,\n x]").unwrap_err();
+        let d = Diagnostic::from_ron(Path::new("deck.ron"), &err);
+        assert_eq!((d.line, d.col), (3, 2));
+        assert!(d.to_string().starts_with("deck.ron:3:2: "), "{d}");
+    }
+}

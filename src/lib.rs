@@ -1,0 +1,27 @@
+//! lectern: a live-reloading lecture tool for physically based animation.
+//!
+//! Data flows one way: files on disk → [`reload`] → parsed models ([`deck`], [`scene`],
+//! [`ode::problem`]) → simulation ([`ode`], [`rigid`], [`school`], [`waves`]) → draw data →
+//! egui / wgpu ([`app`], [`widgets`], [`render`]). The simulation modules know nothing of
+//! egui or wgpu, so they are usable and testable with no window.
+
+pub mod diag;
+
+// numerics and simulation: no GPU or UI types below this line
+pub mod ode;
+pub mod rigid;
+pub mod school;
+pub mod waves;
+
+// models loaded from files
+pub mod deck;
+pub mod reload;
+pub mod scene;
+
+// drawing
+pub mod app;
+pub mod math;
+pub mod render;
+pub mod widgets;
+
+pub mod cli;

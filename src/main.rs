@@ -1,0 +1,61 @@
+//! `lectern`: present the lecture (default), or export, check, solve, bench, inertia, render-scene.
+
+use clap::{Parser, Subcommand};
+use lectern::cli;
+
+#[derive(Parser)]
+#[command(
+    name = "lectern",
+    version,
+    about = "A live-reloading lecture on physically based animation"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Present a deck in a window (the default).
+    Present(cli::present::Args),
+    /// Render every slide to PNG, headless.
+    Export(cli::export::Args),
+    /// Validate decks, scenes, shaders and problems; print file:line:col for each problem.
+    Check(cli::check::Args),
+    /// Integrate an ODE problem file and print the final state or the trajectory.
+    Solve(cli::solve::Args),
+    /// Work-precision report: error against f-evaluations and time for each method.
+    Bench(cli::bench::Args),
+    /// Mass, centre of mass and inertia tensor of a closed triangle mesh (OBJ).
+    Inertia(cli::inertia::Args),
+    /// Render the water scene to PNG frames, headless.
+    RenderScene(cli::render_scene::Args),
+}
+
+fn main() -> std::process::ExitCode {
+    tracing_subscriber::fmt()
+        .with_env_filter(
+            tracing_subscriber::EnvFilter::try_from_default_env()
+                .unwrap_or_else(|_| "warn,lectern=info".into()),
+        )
+        .with_writer(std::io::stderr)
+        .init();
+    let cli = Cli::parse();
+    let result = match cli.command {
+        None => cli::present::run(cli::present::Args::default()),
+        Some(Command::Present(a)) => cli::present::run(a),
+        Some(Command::Export(a)) => cli::export::run(a),
+        Some(Command::Check(a)) => cli::check::run(a),
+        Some(Command::Solve(a)) => cli::solve::run(a),
+        Some(Command::Bench(a)) => cli::bench::run(a),
+        Some(Command::Inertia(a)) => cli::inertia::run(a),
+        Some(Command::RenderScene(a)) => cli::render_scene::run(a),
+    };
+    match result {
+        Ok(()) => std::process::ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("lectern: {e:#}");
+            std::process::ExitCode::FAILURE
+        }
+    }
+}

@@ -1,0 +1,1 @@
+//! Typeset maths for slides, in-process and offline.

@@ -1,0 +1,7 @@
+//! Live reload: watch folders, debounce, and keep the last good version of each file's model.
+
+mod last_good;
+mod watcher;
+
+pub use last_good::LastGood;
+pub use watcher::{DirWatcher, Settled, read_settled};
