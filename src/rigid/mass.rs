@@ -37,14 +37,20 @@ impl MassProperties {
 }
 
 /// Exact mass properties of a closed, outward-oriented triangle mesh at density 1.
+///
+/// The integrals are taken about the centre of the bounding box, not the world origin: they
+/// contain fourth powers of coordinates, so a mesh far from the origin would lose digits to
+/// cancellation (and the result would depend on where the mesh sits).
 pub fn mirtich(mesh: &TriMesh) -> MassProperties {
+    let (lo, hi) = mesh.bounds();
+    let origin = 0.5 * (lo + hi);
     // volume integrals: T0 = ∫1, T1 = ∫(x, y, z), T2 = ∫(x², y², z²), TP = ∫(xy, yz, zx)
     let mut t0 = 0.0;
     let mut t1 = [0.0f64; 3];
     let mut t2 = [0.0f64; 3];
     let mut tp = [0.0f64; 3];
     for i in 0..mesh.triangles.len() {
-        let p = mesh.triangle(i);
+        let p = mesh.triangle(i).map(|v| v - origin);
         let n_raw = (p[1] - p[0]).cross(p[2] - p[0]);
         let len = n_raw.length();
         if len == 0.0 || !len.is_finite() {
@@ -113,7 +119,7 @@ pub fn mirtich(mesh: &TriMesh) -> MassProperties {
     );
     MassProperties {
         mass,
-        center: r,
+        center: r + origin,
         inertia,
     }
 }
