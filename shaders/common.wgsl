@@ -1,7 +1,8 @@
 // common.wgsl — the per-frame uniforms and bindings every scene pass shares, and the
 // Gerstner wave sum (GPU Gems 1, ch. 1, "Effective Water Simulation from Physical Models",
 // Finch 2004, eq. 9 and 12). Included by other shaders with `//!include common.wgsl`.
-// The CPU twin of `gerstner` is `src/scene/surface.rs`: keep both the same formula.
+// The CPU twin of `gerstner` is `crate::waves::WaveSum` (and `src/scene/surface.rs`): keep
+// them the same formula: θ = k D·p0 − ω t, horizontal amplitude Q A = steepness / (k N).
 
 const MAX_WAVES: u32 = 8u;
 const PI: f32 = 3.14159265;
@@ -58,8 +59,10 @@ struct Surface {
 // The Gerstner sum at rest position (x, z): displaced position and analytic frame.
 fn gerstner(xz: vec2f, t: f32) -> Surface {
     var p = vec3f(xz.x, g.water.x, xz.y);
-    var n = vec3f(0.0, 1.0, 0.0);
+    // tangents ∂P/∂x and ∂P/∂z; the normal is their exact cross product (keeps the cross terms
+    // GPU Gems eq. 12 drops, as src/waves.rs does)
     var tg = vec3f(1.0, 0.0, 0.0);
+    var bt = vec3f(0.0, 0.0, 1.0);
     let count = min(u32(g.water.y + 0.5), MAX_WAVES);
     for (var i = 0u; i < count; i++) {
         let w = g.waves[i];
@@ -72,10 +75,10 @@ fn gerstner(xz: vec2f, t: f32) -> Surface {
         let c = cos(phase);
         // horizontal: Q·A·D·cos, with Q·A = qka / k
         p += vec3f(d.x * qka / k * c, a * s, d.y * qka / k * c);
-        n -= vec3f(d.x * k * a * c, qka * s, d.y * k * a * c);
         tg -= vec3f(qka * d.x * d.x * s, -d.x * k * a * c, qka * d.x * d.y * s);
+        bt -= vec3f(qka * d.x * d.y * s, -d.y * k * a * c, qka * d.y * d.y * s);
     }
-    return Surface(p, normalize(n), normalize(tg));
+    return Surface(p, normalize(cross(bt, tg)), normalize(tg));
 }
 
 // Directional shadow: PCF over 3×3 comparison taps (each a bilinear 2×2 in hardware).

@@ -129,7 +129,17 @@ pub fn globals(
         let k = std::f32::consts::TAU / w.wavelength;
         *slot = WaveGpu {
             dir_k_amp: [d.x, d.y, k, w.amplitude],
-            omega_qka: [k * w.speed, w.steepness / n_waves.max(1) as f32, 0.0, 0.0],
+            // a wave of zero amplitude moves nothing (as in crate::waves)
+            omega_qka: [
+                k * w.speed,
+                if w.amplitude == 0.0 {
+                    0.0
+                } else {
+                    w.steepness / n_waves.max(1) as f32
+                },
+                0.0,
+                0.0,
+            ],
         };
     }
     let e = snap.camera.eye;
