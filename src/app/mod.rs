@@ -1,1 +1,15 @@
-//! The eframe app: modes, keys, overlays, presenter view.
+//! The eframe app: modes, keys, overlays, presenter view — and the one slide renderer that the
+//! window, `lectern export` and the snapshot tests share.
+
+mod blocks;
+mod images;
+pub mod keys;
+mod lectern_app;
+pub mod offscreen;
+pub mod overlays;
+pub mod slide_view;
+pub mod theme;
+
+pub use lectern_app::{LecternApp, Mode, Overlay};
+pub use offscreen::{OffscreenError, OffscreenRenderer, render_slide_png};
+pub use slide_view::{DeckState, SlideOptions, SlideResponse, SlideState, slide_ui, slide_ui_with};

@@ -1,9 +1,224 @@
-//! `lectern check`: Validate decks, scenes, shaders and problems.
+//! `lectern check`: validate decks, scenes, shaders, ODE problems and tableaux; print
+//! `file:line:col: message` for each problem and a one-line summary.
+
+use std::path::{Path, PathBuf};
+
+use crate::deck::load_deck;
+use crate::diag::Diagnostic;
 
 /// Validate decks, scenes, shaders and problems.
-#[derive(Debug, clap::Args)]
-pub struct Args {}
+#[derive(Debug, Default, clap::Args)]
+pub struct Args {
+    /// Files or folders to check [default: slides/ scenes/ shaders/]
+    pub paths: Vec<PathBuf>,
+}
 
-pub fn run(_args: Args) -> anyhow::Result<()> {
-    anyhow::bail!("`lectern check` is not built yet")
+/// What a file is, from where it lives and its extension.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kind {
+    Deck,
+    Scene,
+    Shader,
+    Problem,
+    Tableau,
+}
+
+impl Kind {
+    pub fn of(path: &Path) -> Option<Kind> {
+        let ext = path.extension()?.to_str()?;
+        let under = |name: &str| {
+            path.parent()
+                .is_some_and(|p| p.components().any(|c| c.as_os_str() == name))
+        };
+        match ext {
+            "wgsl" => Some(Kind::Shader),
+            "ron" if under("problems") => Some(Kind::Problem),
+            "ron" if under("tableaux") => Some(Kind::Tableau),
+            "ron" if under("scenes") => Some(Kind::Scene),
+            "ron" => Some(Kind::Deck),
+            _ => None,
+        }
+    }
+}
+
+/// The result of checking files: the problems, and a line per good deck.
+#[derive(Debug, Default)]
+pub struct Report {
+    pub problems: Vec<Diagnostic>,
+    /// `slides/lecture.ron: 18 slides, 15:00 planned`
+    pub deck_lines: Vec<String>,
+    pub counts: [usize; 5],
+}
+
+impl Report {
+    pub fn summary(&self) -> String {
+        let [d, s, sh, p, t] = self.counts;
+        let plural =
+            |n: usize, one: &str, many: &str| format!("{n} {}", if n == 1 { one } else { many });
+        let mut parts = vec![plural(d, "deck", "decks")];
+        for (n, one, many) in [
+            (s, "scene", "scenes"),
+            (sh, "shader", "shaders"),
+            (p, "problem file", "problem files"),
+            (t, "tableau", "tableaux"),
+        ] {
+            if n > 0 {
+                parts.push(plural(n, one, many));
+            }
+        }
+        let verdict = match self.problems.len() {
+            0 => "all good".to_owned(),
+            n => plural(n, "problem", "problems"),
+        };
+        format!("checked {}: {verdict}", parts.join(", "))
+    }
+}
+
+/// `m:ss` for a number of seconds.
+pub fn minutes(secs: f32) -> String {
+    let s = secs.max(0.0).round() as u64;
+    format!("{}:{:02}", s / 60, s % 60)
+}
+
+/// Checks every file under `paths` (files or folders, walked recursively in sorted order).
+/// Missing default folders are skipped; a missing path the user named is a problem.
+pub fn check_paths(paths: &[PathBuf], defaults: bool) -> Report {
+    let mut report = Report::default();
+    for path in paths {
+        if !path.exists() {
+            if !defaults {
+                report
+                    .problems
+                    .push(Diagnostic::whole_file(path, "no such file or folder"));
+            }
+            continue;
+        }
+        let mut files = Vec::new();
+        collect_files(path, &mut files);
+        if path.is_file() && Kind::of(path).is_none() {
+            report.problems.push(Diagnostic::whole_file(
+                path,
+                "not a deck, scene, shader, problem or tableau (.ron or .wgsl)",
+            ));
+        }
+        for file in files {
+            check_file(&file, &mut report);
+        }
+    }
+    report
+}
+
+fn collect_files(path: &Path, out: &mut Vec<PathBuf>) {
+    if path.is_file() {
+        if Kind::of(path).is_some() {
+            out.push(path.to_path_buf());
+        }
+        return;
+    }
+    let Ok(entries) = std::fs::read_dir(path) else {
+        return;
+    };
+    let mut entries: Vec<PathBuf> = entries.filter_map(|e| e.ok().map(|e| e.path())).collect();
+    entries.sort();
+    for e in entries {
+        let hidden = e
+            .file_name()
+            .and_then(|n| n.to_str())
+            .is_some_and(|n| n.starts_with('.'));
+        if !hidden {
+            collect_files(&e, out);
+        }
+    }
+}
+
+fn check_file(file: &Path, report: &mut Report) {
+    let Some(kind) = Kind::of(file) else { return };
+    report.counts[kind as usize] += 1;
+    let result: Result<(), Vec<Diagnostic>> = match kind {
+        Kind::Deck => match load_deck(file) {
+            Ok(deck) => {
+                report.deck_lines.push(format!(
+                    "{}: {} slides, {} planned",
+                    file.display(),
+                    deck.slides.len(),
+                    minutes(deck.planned_secs())
+                ));
+                Ok(())
+            }
+            Err(d) => Err(vec![d]),
+        },
+        // HOOK(scene): call `crate::scene::check_file(file)` once the scene engineer's checker is
+        // on main. Until then scenes are checked for RON syntax only.
+        Kind::Scene => ron_syntax(file),
+        // HOOK(shaders): call `crate::render::shaders::check_file(file)` once it is on main (it
+        // adds pipeline-level checks). Until then: naga's parse and validation.
+        Kind::Shader => wgsl(file),
+        // HOOK(numerics): `ode::problem::Problem::load` / `Tableau::load` once merged. Until
+        // then RON syntax only.
+        Kind::Problem | Kind::Tableau => ron_syntax(file),
+    };
+    if let Err(mut ds) = result {
+        report.problems.append(&mut ds);
+    }
+}
+
+fn read(file: &Path) -> Result<String, Vec<Diagnostic>> {
+    std::fs::read_to_string(file)
+        .map_err(|e| vec![Diagnostic::whole_file(file, format!("cannot read: {e}"))])
+}
+
+fn ron_syntax(file: &Path) -> Result<(), Vec<Diagnostic>> {
+    let text = read(file)?;
+    ron::Options::default()
+        .with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME)
+        .from_str::<ron::Value>(&text)
+        .map(|_| ())
+        .map_err(|e| vec![Diagnostic::from_ron(file, &e)])
+}
+
+fn wgsl(file: &Path) -> Result<(), Vec<Diagnostic>> {
+    let text = read(file)?;
+    let diag = |loc: Option<naga::SourceLocation>, msg: String| {
+        let (line, col) = loc.map_or((0, 0), |l| {
+            (l.line_number as usize, l.line_position as usize)
+        });
+        vec![Diagnostic::new(file, line, col, msg)]
+    };
+    let module = naga::front::wgsl::parse_str(&text)
+        .map_err(|e| diag(e.location(&text), e.message().to_owned()))?;
+    naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::all(),
+    )
+    .validate(&module)
+    .map_err(|e| {
+        let loc = e.location(&text);
+        diag(loc, e.as_inner().to_string())
+    })?;
+    Ok(())
+}
+
+pub fn run(args: Args) -> anyhow::Result<()> {
+    let defaults = args.paths.is_empty();
+    let paths = if defaults {
+        ["slides", "scenes", "shaders"]
+            .iter()
+            .map(PathBuf::from)
+            .collect()
+    } else {
+        args.paths
+    };
+    let report = check_paths(&paths, defaults);
+    for line in &report.deck_lines {
+        println!("{line}");
+    }
+    for d in &report.problems {
+        println!("{d}");
+    }
+    println!("{}", report.summary());
+    if report.problems.is_empty() {
+        Ok(())
+    } else {
+        Err(anyhow::anyhow!("{} problem(s)", report.problems.len()))
+    }
 }

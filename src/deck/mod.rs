@@ -3,6 +3,10 @@
 
 mod load;
 mod model;
+pub mod nav;
+mod session;
 
-pub use load::{load_deck, parse_deck};
-pub use model::{Aspect, Block, Deck, Slide};
+pub use load::{load_deck, parse_deck, parse_deck_file};
+pub use model::{Aspect, Block, Deck, Layout, Slide, Theme};
+pub use nav::Nav;
+pub use session::DeckSession;

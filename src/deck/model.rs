@@ -1,6 +1,8 @@
 //! The deck as the lecturer writes it in RON. Every field beyond the essentials has a default,
 //! so a minimal deck is a title and a list of slides.
 
+use std::path::PathBuf;
+
 use serde::{Deserialize, Serialize};
 
 use crate::widgets::WidgetSpec;
@@ -11,7 +13,13 @@ pub struct Deck {
     /// Width : height of the logical canvas; slides are laid out on it and scaled to the window.
     #[serde(default)]
     pub aspect: Aspect,
+    /// Colour scheme of the slides.
+    #[serde(default)]
+    pub theme: Theme,
     pub slides: Vec<Slide>,
+    /// The folder the deck was loaded from; image paths are relative to it. Not in the file.
+    #[serde(skip)]
+    pub base_dir: Option<PathBuf>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -23,12 +31,34 @@ impl Default for Aspect {
     }
 }
 
+impl Aspect {
+    /// Width over height, guarded against a zero or absurd ratio in the file.
+    pub fn ratio(self) -> f32 {
+        if self.0 == 0 || self.1 == 0 {
+            return 16.0 / 9.0;
+        }
+        (self.0 as f32 / self.1 as f32).clamp(0.25, 4.0)
+    }
+}
+
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Theme {
+    /// Light text on a near-black background: best in a dimmed lecture hall.
+    #[default]
+    Dark,
+    /// Dark text on an off-white background: best in a bright room.
+    Light,
+}
+
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Slide {
     /// Stable identity across edits: keeps the presenter's place and tweaks when slides move.
     #[serde(default)]
     pub id: Option<String>,
     pub title: String,
+    /// How the slide is arranged: a content slide (title on top) or a centred title slide.
+    #[serde(default)]
+    pub layout: Layout,
     #[serde(default)]
     pub body: Vec<Block>,
     /// Speaker notes, shown on the presenter side only.
@@ -37,6 +67,22 @@ pub struct Slide {
     /// Planned time for this slide.
     #[serde(default)]
     pub seconds: Option<f32>,
+}
+
+impl Slide {
+    /// What identifies the slide across reloads: its id, else its title.
+    pub fn key(&self) -> &str {
+        self.id.as_deref().unwrap_or(&self.title)
+    }
+}
+
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Layout {
+    /// Title at the top, blocks below it.
+    #[default]
+    Content,
+    /// Large centred title with the body beneath: the opening slide or a section divider.
+    Title,
 }
 
 /// One piece of slide content, laid out top to bottom.
@@ -62,4 +108,16 @@ pub enum Block {
     Widget(WidgetSpec),
     /// Side-by-side columns, each a list of blocks.
     Columns(Vec<Vec<Block>>),
+}
+
+impl Deck {
+    /// The planned length of the talk: the sum of the slides' budgets.
+    pub fn planned_secs(&self) -> f32 {
+        self.slides.iter().filter_map(|s| s.seconds).sum()
+    }
+
+    /// The index of the slide whose [`Slide::key`] is `key`.
+    pub fn find(&self, key: &str) -> Option<usize> {
+        self.slides.iter().position(|s| s.key() == key)
+    }
 }

@@ -1,0 +1,396 @@
+//! Slide body blocks: paragraphs, bullets, maths, images, live widgets and columns, laid out top
+//! to bottom on the canvas. Text blocks take the height they need; widgets share what is left.
+
+use std::path::Path;
+
+use egui::text::{LayoutJob, TextFormat};
+use egui::{Align, Rect, Sense, Stroke, UiBuilder, vec2};
+
+use super::images;
+use super::slide_view::SlideState;
+use super::theme::{self, Look, size};
+use crate::deck::{Block, Theme};
+
+/// What every block needs to draw itself.
+pub(crate) struct BlockCtx<'a> {
+    pub look: Look,
+    /// The deck's folder; image paths are relative to it.
+    pub base_dir: Option<&'a Path>,
+}
+
+/// The style widgets see inside a slide: egui's dark or light visuals recoloured to the
+/// palette, and every size scaled from canvas units, so a slider on a 4K projector is as large
+/// (relative to the slide) as in a laptop window.
+pub(crate) fn widget_style(base: &egui::Style, look: &Look, theme: Theme) -> egui::Style {
+    use egui::{FontFamily, FontId, TextStyle};
+    let mut style = base.clone();
+    let p = look.palette;
+    style.visuals = match theme {
+        Theme::Dark => egui::Visuals::dark(),
+        Theme::Light => egui::Visuals::light(),
+    };
+    style.visuals.extreme_bg_color = p.panel;
+    style.visuals.panel_fill = p.background;
+    style.visuals.window_fill = p.panel;
+    style.visuals.widgets.noninteractive.fg_stroke.color = p.text;
+    style.visuals.selection.bg_fill = p.accent.gamma_multiply(0.6);
+    style.interaction.selectable_labels = false;
+
+    let text = |units: f32, family: FontFamily| FontId::new(look.scaled(units), family);
+    let prop = FontFamily::Proportional;
+    style.text_styles = [
+        (
+            TextStyle::Small,
+            text(size::WIDGET_TEXT * 0.75, prop.clone()),
+        ),
+        (TextStyle::Body, text(size::WIDGET_TEXT, prop.clone())),
+        (TextStyle::Button, text(size::WIDGET_TEXT, prop.clone())),
+        (TextStyle::Heading, text(size::WIDGET_TEXT * 1.4, prop)),
+        (
+            TextStyle::Monospace,
+            text(size::WIDGET_TEXT * 0.9, FontFamily::Monospace),
+        ),
+    ]
+    .into();
+
+    // egui's default spacing is made for 12.5-point body text; scale it with ours.
+    let k = look.scaled(size::WIDGET_TEXT) / 12.5;
+    let s = &mut style.spacing;
+    s.item_spacing *= k;
+    s.button_padding *= k;
+    s.interact_size *= k;
+    s.slider_width *= k;
+    s.slider_rail_height *= k;
+    s.icon_width *= k;
+    s.icon_width_inner *= k;
+    s.icon_spacing *= k;
+    s.combo_width *= k;
+    s.text_edit_width *= k;
+    s.indent *= k;
+    s.menu_width *= k;
+    s.tooltip_width *= k;
+    let thick = (0.6 * k).max(1.0);
+    for w in [
+        &mut style.visuals.widgets.noninteractive,
+        &mut style.visuals.widgets.inactive,
+        &mut style.visuals.widgets.hovered,
+        &mut style.visuals.widgets.active,
+        &mut style.visuals.widgets.open,
+    ] {
+        w.fg_stroke.width *= thick;
+        w.bg_stroke.width *= thick;
+    }
+    style
+}
+
+/// Lays out `blocks` in `ui`; `path` is where they sit in the slide (for widget identity).
+pub(crate) fn blocks_ui(
+    ui: &mut egui::Ui,
+    blocks: &[Block],
+    path: &[usize],
+    bctx: &BlockCtx,
+    state: &mut SlideState,
+    align: Align,
+) {
+    let look = &bctx.look;
+    let width = ui.available_width();
+    let gap = look.scaled(size::BLOCK_GAP);
+    // Widgets (and columns holding them) share the height the other blocks leave.
+    let fixed: f32 = blocks
+        .iter()
+        .filter_map(|b| measure(ui, b, width, bctx))
+        .sum();
+    let flexible = blocks.iter().filter(|b| is_flexible(b)).count();
+    let gaps = gap * blocks.len().saturating_sub(1) as f32;
+    let flex_h = if flexible > 0 {
+        ((ui.available_height() - fixed - gaps) / flexible as f32).max(look.scaled(240.0))
+    } else {
+        0.0
+    };
+    for (i, block) in blocks.iter().enumerate() {
+        if i > 0 {
+            ui.add_space(gap);
+        }
+        let mut here = path.to_vec();
+        here.push(i);
+        block_ui(ui, block, &here, bctx, state, align, flex_h);
+    }
+}
+
+fn is_flexible(block: &Block) -> bool {
+    match block {
+        Block::Widget(_) => true,
+        Block::Columns(cols) => cols.iter().flatten().any(is_flexible),
+        _ => false,
+    }
+}
+
+/// The height a non-flexible block will take at `width`, in points; `None` for flexible ones.
+fn measure(ui: &egui::Ui, block: &Block, width: f32, bctx: &BlockCtx) -> Option<f32> {
+    let look = &bctx.look;
+    match block {
+        Block::Text(t) => Some(paragraph_galley(ui, t, width, look, Align::Min).size().y),
+        Block::Bullets(items) => {
+            let indent = look.scaled(bullet_indent());
+            let h: f32 = items
+                .iter()
+                .map(|t| {
+                    paragraph_galley(ui, t, width - indent, look, Align::Min)
+                        .size()
+                        .y
+                })
+                .sum();
+            Some(h + look.scaled(size::BULLET_GAP) * items.len().saturating_sub(1) as f32)
+        }
+        Block::Math { src, .. } => Some(math_height(src, look)),
+        Block::Image { path, width: w } => {
+            let (_, h) = images::image_size(ui.ctx(), bctx.base_dir, path, w, width, look);
+            Some(h)
+        }
+        Block::Widget(_) => None,
+        Block::Columns(cols) => {
+            if is_flexible(block) {
+                return None;
+            }
+            let n = cols.len().max(1) as f32;
+            let gap = look.scaled(size::BLOCK_GAP * 1.5);
+            let cw = (width - gap * (n - 1.0)) / n;
+            let col_h = |col: &Vec<Block>| -> f32 {
+                let inner: f32 = col.iter().filter_map(|b| measure(ui, b, cw, bctx)).sum();
+                inner + look.scaled(size::BLOCK_GAP) * col.len().saturating_sub(1) as f32
+            };
+            Some(cols.iter().map(col_h).fold(0.0, f32::max))
+        }
+    }
+}
+
+fn block_ui(
+    ui: &mut egui::Ui,
+    block: &Block,
+    path: &[usize],
+    bctx: &BlockCtx,
+    state: &mut SlideState,
+    align: Align,
+    flex_h: f32,
+) {
+    let look = &bctx.look;
+    let width = ui.available_width();
+    match block {
+        Block::Text(t) => {
+            let galley = paragraph_galley(ui, t, width, look, align);
+            let (rect, _) = ui.allocate_exact_size(vec2(width, galley.size().y), Sense::hover());
+            let x = if align == Align::Center {
+                rect.center().x
+            } else {
+                rect.left()
+            };
+            ui.painter()
+                .galley(egui::pos2(x, rect.top()), galley, look.palette.text);
+        }
+        Block::Bullets(items) => bullets_ui(ui, items, look),
+        Block::Math { src, latex } => math_ui(ui, src, *latex, look),
+        Block::Image { path: p, width: w } => images::image_ui(ui, bctx.base_dir, p, w, look),
+        Block::Widget(spec) => {
+            let (rect, _) = ui.allocate_exact_size(vec2(width, flex_h), Sense::hover());
+            let mut child = ui.new_child(
+                UiBuilder::new()
+                    .id_salt(("widget", path))
+                    .max_rect(rect)
+                    .layout(egui::Layout::top_down(Align::Min)),
+            );
+            child.set_clip_rect(rect.intersect(ui.clip_rect()));
+            state.widget(path, spec).ui(&mut child);
+        }
+        Block::Columns(cols) => {
+            let n = cols.len().max(1) as f32;
+            let gap = look.scaled(size::BLOCK_GAP * 1.5);
+            let cw = (width - gap * (n - 1.0)) / n;
+            let h = if is_flexible(block) {
+                flex_h
+            } else {
+                measure(ui, block, width, bctx).unwrap_or(0.0)
+            };
+            let top_left = ui.cursor().min;
+            let mut used = 0.0f32;
+            for (c, col) in cols.iter().enumerate() {
+                let rect =
+                    Rect::from_min_size(top_left + vec2(c as f32 * (cw + gap), 0.0), vec2(cw, h));
+                let mut child = ui.new_child(
+                    UiBuilder::new()
+                        .id_salt(("column", path, c))
+                        .max_rect(rect)
+                        .layout(egui::Layout::top_down(Align::Min)),
+                );
+                let mut here = path.to_vec();
+                here.push(c);
+                blocks_ui(&mut child, col, &here, bctx, state, Align::Min);
+                used = used.max(child.min_rect().height());
+            }
+            ui.allocate_exact_size(vec2(width, used.max(h)), Sense::hover());
+        }
+    }
+}
+
+fn bullet_indent() -> f32 {
+    size::BODY * 1.1
+}
+
+fn bullets_ui(ui: &mut egui::Ui, items: &[String], look: &Look) {
+    let width = ui.available_width();
+    let indent = look.scaled(bullet_indent());
+    for (i, item) in items.iter().enumerate() {
+        if i > 0 {
+            ui.add_space(look.scaled(size::BULLET_GAP));
+        }
+        let galley = paragraph_galley(ui, item, width - indent, look, Align::Min);
+        let first_row_h = galley.rows.first().map_or(0.0, |r| r.height());
+        let (rect, _) = ui.allocate_exact_size(vec2(width, galley.size().y), Sense::hover());
+        // A small accent square, centred on the first line's x-height.
+        let c = egui::pos2(
+            rect.left() + look.scaled(12.0),
+            rect.top() + first_row_h * 0.55,
+        );
+        ui.painter().rect_filled(
+            Rect::from_center_size(c, vec2(look.scaled(11.0), look.scaled(11.0))),
+            look.scaled(2.0),
+            look.palette.accent,
+        );
+        ui.painter().galley(
+            rect.left_top() + vec2(indent, 0.0),
+            galley,
+            look.palette.text,
+        );
+    }
+}
+
+/// A paragraph with light inline markup: `*emphasis*` in italics, `` `code` `` in monospace.
+pub(crate) fn paragraph_galley(
+    ui: &egui::Ui,
+    text: &str,
+    width: f32,
+    look: &Look,
+    align: Align,
+) -> std::sync::Arc<egui::Galley> {
+    let ctx = ui.ctx();
+    let regular = look.font(theme::SERIF, size::BODY, ctx);
+    let italic = look.font(theme::SERIF_ITALIC, size::BODY, ctx);
+    let mono = look.font(theme::MONO, size::BODY * 0.85, ctx);
+    let mut job = LayoutJob {
+        halign: align,
+        ..Default::default()
+    };
+    job.wrap.max_width = width.max(1.0);
+    for (span, kind) in inline_spans(text) {
+        let font = match kind {
+            Inline::Plain => regular.clone(),
+            Inline::Emphasis => italic.clone(),
+            Inline::Code => mono.clone(),
+        };
+        let mut format = TextFormat::simple(font, look.palette.text);
+        if kind == Inline::Emphasis {
+            format.color = look.palette.title;
+        }
+        job.append(span, 0.0, format);
+    }
+    ui.painter().layout_job(job)
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Inline {
+    Plain,
+    Emphasis,
+    Code,
+}
+
+/// Splits `*emphasis*` and `` `code` `` out of a paragraph. An unmatched marker is kept as
+/// literal text, so a lone `*` (as in "a * b") never swallows the rest of the line.
+pub(crate) fn inline_spans(text: &str) -> Vec<(&str, Inline)> {
+    let mut out = Vec::new();
+    let mut rest = text;
+    while !rest.is_empty() {
+        let next = rest.find(['*', '`']);
+        let Some(start) = next else {
+            out.push((rest, Inline::Plain));
+            break;
+        };
+        let marker = rest.as_bytes()[start] as char;
+        let after = &rest[start + 1..];
+        match after.find(marker) {
+            Some(len) if len > 0 => {
+                if start > 0 {
+                    out.push((&rest[..start], Inline::Plain));
+                }
+                let kind = if marker == '*' {
+                    Inline::Emphasis
+                } else {
+                    Inline::Code
+                };
+                out.push((&after[..len], kind));
+                rest = &after[len + 1..];
+            }
+            _ => {
+                out.push((&rest[..=start], Inline::Plain));
+                rest = after;
+            }
+        }
+    }
+    out
+}
+
+fn math_height(src: &str, look: &Look) -> f32 {
+    let lines = src.lines().count().max(1) as f32;
+    look.scaled(size::MATH * 1.3 * lines + 48.0)
+}
+
+/// Display maths. Until the typesetter (`crate::math`) lands, the source is shown in a quiet
+/// monospace frame, so a deck with formulas is still presentable.
+fn math_ui(ui: &mut egui::Ui, src: &str, _latex: bool, look: &Look) {
+    let width = ui.available_width();
+    let h = math_height(src, look);
+    let (rect, _) = ui.allocate_exact_size(vec2(width, h), Sense::hover());
+    let font = look.font(theme::MONO, size::MATH * 0.9, ui.ctx());
+    let galley = ui
+        .painter()
+        .layout(src.trim().to_owned(), font, look.palette.title, width);
+    let frame = Rect::from_center_size(
+        rect.center(),
+        vec2(
+            (galley.size().x + look.scaled(64.0)).min(width),
+            rect.height(),
+        ),
+    );
+    ui.painter()
+        .rect_filled(frame, look.scaled(10.0), look.palette.panel);
+    ui.painter().rect_stroke(
+        frame,
+        look.scaled(10.0),
+        Stroke::new(look.scaled(1.5), look.palette.dim.gamma_multiply(0.5)),
+        egui::StrokeKind::Inside,
+    );
+    ui.painter().galley(
+        frame.center() - galley.size() * 0.5,
+        galley,
+        look.palette.title,
+    );
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn inline_markup_splits_and_keeps_lone_markers() {
+        use Inline::*;
+        assert_eq!(
+            inline_spans("a *b* `c` d"),
+            vec![
+                ("a ", Plain),
+                ("b", Emphasis),
+                (" ", Plain),
+                ("c", Code),
+                (" d", Plain)
+            ]
+        );
+        assert_eq!(inline_spans("x * y"), vec![("x *", Plain), (" y", Plain)]);
+    }
+}

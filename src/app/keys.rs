@@ -1,0 +1,226 @@
+//! Keys → actions, as a pure function of egui's input events, so the key map is testable and
+//! the keys the app handles can be taken out of the input before slide widgets see them (a
+//! focused slider must not eat the clicker's PageDown).
+
+use egui::{Event, Key, Modifiers};
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Action {
+    Next,
+    Prev,
+    First,
+    Last,
+    /// `G`: start typing a slide number.
+    GotoStart,
+    GotoDigit(u8),
+    GotoBackspace,
+    GotoConfirm,
+    ToggleOverview,
+    ToggleFullscreen,
+    ToggleBlack,
+    /// `Tab`: slide mode ↔ scene mode.
+    ToggleMode,
+    ToggleHelp,
+    /// Leaves overlays, then fullscreen.
+    Escape,
+    /// `P`: presenter overlay on a single screen.
+    TogglePresenter,
+    /// `C`: show the live-tweak controls on the audience screen.
+    ToggleControls,
+    /// `R`: reset the current slide's tweaks to the file's values.
+    ResetTweaks,
+    /// `Ctrl+1…9`: store the current slide's tweaks.
+    BookmarkStore(u8),
+    /// `1…9`: recall a stored tweak state.
+    BookmarkRecall(u8),
+    /// `Space` is taken by "next"; `T` pauses/resumes the talk timer.
+    TimerPause,
+    /// `Shift+T`: timer back to zero.
+    TimerReset,
+    /// `E`: export the current slide, as shown, to PNG.
+    ExportSlide,
+    /// `Ctrl+S`: write the current tweaks back into the deck file.
+    WriteBack,
+}
+
+/// One line per key for the `?` overlay: (keys, what they do).
+pub const HELP: &[(&str, &str)] = &[
+    ("→  ↓  Space  PageDown  click", "next slide"),
+    ("←  ↑  PageUp", "previous slide"),
+    ("Home  End", "first / last slide"),
+    ("G  number  Enter", "go to slide"),
+    ("O", "overview of all slides"),
+    ("F  F11", "fullscreen"),
+    ("B", "black screen"),
+    ("Tab", "slides ↔ water scene"),
+    ("P", "presenter view (notes, timer, next slide)"),
+    ("C", "controls on the audience screen"),
+    ("T  Shift+T", "pause / reset the timer"),
+    ("R", "reset this slide's tweaks"),
+    ("Ctrl+1…9  1…9", "store / recall a tweak bookmark"),
+    ("Ctrl+S", "write tweaks back into the deck file"),
+    ("E", "export this slide as PNG"),
+    ("?", "this list"),
+    ("Esc", "close overlays, leave fullscreen"),
+];
+
+/// The actions in `events`. `typing_number` is true while `G` collects digits, which then go
+/// to the number instead of recalling bookmarks.
+pub fn actions(events: &[Event], typing_number: bool) -> Vec<Action> {
+    events
+        .iter()
+        .filter_map(|e| action(e, typing_number))
+        .collect()
+}
+
+/// Whether the app handles `event` (so it can be taken out before widgets see it).
+pub fn is_handled(event: &Event, typing_number: bool) -> bool {
+    action(event, typing_number).is_some()
+        || matches!(event, Event::Key { key, .. } if claimed_key(*key))
+}
+
+/// Keys we act on when pressed; their release (and repeats) are ours too.
+fn claimed_key(key: Key) -> bool {
+    matches!(
+        key,
+        Key::ArrowRight
+            | Key::ArrowLeft
+            | Key::ArrowDown
+            | Key::ArrowUp
+            | Key::Space
+            | Key::PageDown
+            | Key::PageUp
+            | Key::Home
+            | Key::End
+            | Key::Tab
+    )
+}
+
+fn action(event: &Event, typing_number: bool) -> Option<Action> {
+    use Action::*;
+    match event {
+        // '?' comes as text, whatever the keyboard layout puts it on.
+        Event::Text(t) if t == "?" => Some(ToggleHelp),
+        Event::Key {
+            key,
+            pressed: true,
+            modifiers,
+            ..
+        } => {
+            let digit = digit_of(*key);
+            if typing_number {
+                return match (key, digit) {
+                    (_, Some(d)) => Some(GotoDigit(d)),
+                    (Key::Enter, _) => Some(GotoConfirm),
+                    (Key::Backspace, _) => Some(GotoBackspace),
+                    (Key::Escape, _) => Some(Escape),
+                    _ => None,
+                };
+            }
+            let ctrl = modifiers.command || modifiers.ctrl;
+            if ctrl {
+                return match (key, digit) {
+                    (_, Some(d @ 1..=9)) => Some(BookmarkStore(d)),
+                    (Key::S, _) => Some(WriteBack),
+                    _ => None,
+                };
+            }
+            if modifiers.alt {
+                return None;
+            }
+            Some(match key {
+                Key::ArrowRight | Key::ArrowDown | Key::Space | Key::PageDown => Next,
+                Key::ArrowLeft | Key::ArrowUp | Key::PageUp => Prev,
+                Key::Home => First,
+                Key::End => Last,
+                Key::G => GotoStart,
+                Key::O => ToggleOverview,
+                Key::F | Key::F11 => ToggleFullscreen,
+                Key::B => ToggleBlack,
+                Key::Tab => ToggleMode,
+                Key::Escape => Escape,
+                Key::P => TogglePresenter,
+                Key::C => ToggleControls,
+                Key::R => ResetTweaks,
+                Key::E => ExportSlide,
+                Key::T if modifiers.shift => TimerReset,
+                Key::T => TimerPause,
+                _ => match digit {
+                    Some(d @ 1..=9) => BookmarkRecall(d),
+                    _ => return None,
+                },
+            })
+        }
+        _ => None,
+    }
+}
+
+fn digit_of(key: Key) -> Option<u8> {
+    Some(match key {
+        Key::Num0 => 0,
+        Key::Num1 => 1,
+        Key::Num2 => 2,
+        Key::Num3 => 3,
+        Key::Num4 => 4,
+        Key::Num5 => 5,
+        Key::Num6 => 6,
+        Key::Num7 => 7,
+        Key::Num8 => 8,
+        Key::Num9 => 9,
+        _ => return None,
+    })
+}
+
+/// A key press as egui reports it, for tests.
+pub fn press(key: Key, modifiers: Modifiers) -> Event {
+    Event::Key {
+        key,
+        physical_key: None,
+        pressed: true,
+        repeat: false,
+        modifiers,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use Action::*;
+
+    #[test]
+    fn clicker_and_arrows() {
+        let none = Modifiers::NONE;
+        let ev = [
+            press(Key::PageDown, none),
+            press(Key::PageUp, none),
+            press(Key::Space, none),
+            press(Key::ArrowLeft, none),
+            press(Key::End, none),
+        ];
+        assert_eq!(actions(&ev, false), vec![Next, Prev, Next, Prev, Last]);
+    }
+
+    #[test]
+    fn digits_go_to_the_number_while_typing_and_to_bookmarks_otherwise() {
+        let none = Modifiers::NONE;
+        let ev = [
+            press(Key::Num1, none),
+            press(Key::Num2, none),
+            press(Key::Enter, none),
+        ];
+        assert_eq!(
+            actions(&ev, true),
+            vec![GotoDigit(1), GotoDigit(2), GotoConfirm]
+        );
+        assert_eq!(actions(&ev[..1], false), vec![BookmarkRecall(1)]);
+        assert_eq!(
+            actions(&[press(Key::Num3, Modifiers::CTRL)], false),
+            vec![BookmarkStore(3)]
+        );
+    }
+
+    #[test]
+    fn question_mark_from_text() {
+        assert_eq!(actions(&[Event::Text("?".into())], false), vec![ToggleHelp]);
+    }
+}

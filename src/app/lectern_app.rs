@@ -1,0 +1,242 @@
+//! The presenting app: one deck session, the slide (or scene) on screen, keys, overlays and
+//! hot reload. `frame_ui` is the whole frame, callable from eframe and from egui_kittest alike.
+
+use std::time::Duration;
+
+use super::keys::{self, Action};
+use super::overlays;
+use super::slide_view::{DeckState, black_ui, slide_ui};
+use super::theme::Palette;
+use crate::deck::{DeckSession, Nav};
+use crate::reload::Reloaded;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Mode {
+    Slides,
+    Scene,
+}
+
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Overlay {
+    None,
+    Help,
+    Overview,
+    /// `G` pressed; the digits typed so far.
+    Goto(String),
+}
+
+pub struct LecternApp {
+    session: DeckSession,
+    states: DeckState,
+    mode: Mode,
+    overlay: Overlay,
+    black: bool,
+    /// A short message and the time (egui seconds) it disappears.
+    toast: Option<(String, f64)>,
+    /// The eframe wgpu state, for scene mode; `None` in tests without a window.
+    pub render_state: Option<egui_wgpu::RenderState>,
+}
+
+impl LecternApp {
+    pub fn new(session: DeckSession) -> Self {
+        Self {
+            session,
+            states: DeckState::default(),
+            mode: Mode::Slides,
+            overlay: Overlay::None,
+            black: false,
+            toast: None,
+            render_state: None,
+        }
+    }
+
+    /// Starts hot reload: the deck's folder is watched and `ctx` repainted on each change.
+    pub fn watch(&mut self, ctx: &egui::Context) {
+        let ctx = ctx.clone();
+        if let Err(e) = self
+            .session
+            .watch(Duration::from_millis(150), move || ctx.request_repaint())
+        {
+            tracing::warn!("hot reload is off: {e}");
+        }
+    }
+
+    pub fn session(&self) -> &DeckSession {
+        &self.session
+    }
+
+    pub fn nav(&self) -> &Nav {
+        self.session.nav()
+    }
+
+    pub fn mode(&self) -> Mode {
+        self.mode
+    }
+
+    pub fn overlay(&self) -> &Overlay {
+        &self.overlay
+    }
+
+    pub fn is_black(&self) -> bool {
+        self.black
+    }
+
+    /// Applies file changes seen by the watcher. Cheap when nothing changed.
+    pub fn pump_reload(&mut self) {
+        if let Some(Reloaded::Updated) = self.session.pump() {
+            self.states.retain_deck(self.session.deck());
+            self.session.take_replaced();
+        }
+    }
+
+    /// One whole frame: reload, keys, the slide or scene, overlays.
+    pub fn frame_ui(&mut self, ui: &mut egui::Ui) {
+        self.pump_reload();
+        let ctx = ui.ctx().clone();
+        let typing = matches!(self.overlay, Overlay::Goto(_));
+        let actions = ctx.input_mut(|i| {
+            let acts = keys::actions(&i.events, typing);
+            i.events.retain(|e| !keys::is_handled(e, typing));
+            acts
+        });
+        for a in actions {
+            self.apply(a, &ctx);
+        }
+
+        let deck = self.session.deck();
+        let palette = Palette::of(deck.theme);
+        let index = self.session.nav().index();
+        match (self.mode, &self.overlay) {
+            (_, _) if self.black => black_ui(ui),
+            (Mode::Slides, Overlay::Overview) => {
+                let picked = overlays::overview_ui(ui, deck, index, &mut self.states);
+                if let Some(i) = picked {
+                    self.session.navigate(|nav, deck| nav.go(deck, i));
+                    self.overlay = Overlay::None;
+                }
+            }
+            (Mode::Slides, _) => {
+                let slide = &deck.slides[index];
+                let resp = slide_ui(ui, deck, index, self.states.slide(slide));
+                if resp.background.clicked() && self.overlay == Overlay::None {
+                    self.session.navigate(|nav, deck| nav.next(deck));
+                }
+            }
+            (Mode::Scene, _) => overlays::scene_placeholder_ui(ui, &palette),
+        }
+        match &self.overlay {
+            Overlay::Help => overlays::help_ui(ui, &palette),
+            Overlay::Goto(typed) => {
+                overlays::goto_ui(ui, typed, self.session.deck().slides.len(), &palette)
+            }
+            Overlay::None | Overlay::Overview => {}
+        }
+        if let Some(err) = self.session.error() {
+            overlays::error_notice_ui(ui, err, &palette);
+        }
+        let now = ctx.input(|i| i.time);
+        if let Some((msg, until)) = &self.toast {
+            if now < *until {
+                overlays::toast_ui(ui, msg, &palette);
+                ctx.request_repaint_after(Duration::from_secs_f64(until - now));
+            } else {
+                self.toast = None;
+            }
+        }
+    }
+
+    fn say(&mut self, ctx: &egui::Context, message: impl Into<String>) {
+        let now = ctx.input(|i| i.time);
+        self.toast = Some((message.into(), now + 2.5));
+    }
+
+    /// Does what a key asks.
+    pub fn apply(&mut self, action: Action, ctx: &egui::Context) {
+        use Action::*;
+        // The number prompt takes digits, Enter, Backspace and Esc; everything else closes it.
+        if let Overlay::Goto(typed) = &mut self.overlay {
+            match action {
+                GotoDigit(d) => {
+                    if typed.len() < 4 {
+                        typed.push(char::from(b'0' + d));
+                    }
+                    return;
+                }
+                GotoBackspace => {
+                    typed.pop();
+                    return;
+                }
+                GotoConfirm => {
+                    let typed = std::mem::take(typed);
+                    self.overlay = Overlay::None;
+                    if let Ok(n) = typed.parse::<usize>() {
+                        let r = self.session.navigate(|nav, deck| nav.goto_number(deck, n));
+                        if let Err(msg) = r {
+                            self.say(ctx, msg);
+                        }
+                    }
+                    return;
+                }
+                _ => self.overlay = Overlay::None,
+            }
+            if action == Escape {
+                return;
+            }
+        }
+        match action {
+            Next => {
+                self.session.navigate(|nav, deck| nav.next(deck));
+            }
+            Prev => {
+                self.session.navigate(|nav, deck| nav.prev(deck));
+            }
+            First => {
+                self.session.navigate(|nav, deck| nav.first(deck));
+            }
+            Last => {
+                self.session.navigate(|nav, deck| nav.last(deck));
+            }
+            GotoStart => self.overlay = Overlay::Goto(String::new()),
+            ToggleOverview => self.toggle_overlay(Overlay::Overview),
+            ToggleHelp => self.toggle_overlay(Overlay::Help),
+            ToggleFullscreen => {
+                let full = ctx.input(|i| i.viewport().fullscreen.unwrap_or(false));
+                ctx.send_viewport_cmd(egui::ViewportCommand::Fullscreen(!full));
+            }
+            ToggleBlack => self.black = !self.black,
+            ToggleMode => {
+                self.mode = match self.mode {
+                    Mode::Slides => Mode::Scene,
+                    Mode::Scene => Mode::Slides,
+                }
+            }
+            Escape => {
+                let full = ctx.input(|i| i.viewport().fullscreen.unwrap_or(false));
+                if self.overlay != Overlay::None {
+                    self.overlay = Overlay::None;
+                } else if self.black {
+                    self.black = false;
+                } else if full {
+                    ctx.send_viewport_cmd(egui::ViewportCommand::Fullscreen(false));
+                }
+            }
+            GotoDigit(_) | GotoBackspace | GotoConfirm => {}
+            TogglePresenter | ToggleControls | ResetTweaks | BookmarkStore(_)
+            | BookmarkRecall(_) | TimerPause | TimerReset | ExportSlide | WriteBack => {}
+        }
+    }
+
+    fn toggle_overlay(&mut self, overlay: Overlay) {
+        self.overlay = if self.overlay == overlay {
+            Overlay::None
+        } else {
+            overlay
+        };
+    }
+}
+
+impl eframe::App for LecternApp {
+    fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
+        self.frame_ui(ui);
+    }
+}

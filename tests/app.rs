@@ -1,0 +1,253 @@
+//! The presenting app driven frame by frame (egui_kittest), as a lecturer's keys and clicks
+//! drive it: navigation, overlays, click-forward, a reload error notice; with snapshots of what
+//! the audience sees.
+
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use egui::{Event, Key, Modifiers, PointerButton, Pos2};
+use egui_kittest::kittest::Queryable;
+use egui_kittest::{Harness, SnapshotOptions};
+use lectern::app::{LecternApp, Mode, Overlay};
+use lectern::deck::DeckSession;
+
+const SIZE: [f32; 2] = [960.0, 540.0];
+
+/// A copy of the bundled lecture in a temporary folder (tests may break it).
+fn lecture_copy() -> (tempfile::TempDir, PathBuf) {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("lecture.ron");
+    std::fs::copy(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("slides/lecture.ron"),
+        &path,
+    )
+    .unwrap();
+    (dir, path)
+}
+
+fn harness(path: &Path) -> Harness<'static, LecternApp> {
+    let app = LecternApp::new(DeckSession::open(path).unwrap());
+    Harness::builder()
+        .with_size(SIZE)
+        .wgpu()
+        .build_ui_state(|ui, app: &mut LecternApp| app.frame_ui(ui), app)
+}
+
+fn press(h: &mut Harness<'static, LecternApp>, key: Key) {
+    h.key_press(key);
+    h.run_steps(2);
+}
+
+fn index(h: &Harness<'static, LecternApp>) -> usize {
+    h.state().nav().index()
+}
+
+fn click(h: &mut Harness<'static, LecternApp>, pos: Pos2) {
+    h.event(Event::PointerMoved(pos));
+    for pressed in [true, false] {
+        h.event(Event::PointerButton {
+            pos,
+            button: PointerButton::Primary,
+            pressed,
+            modifiers: Modifiers::NONE,
+        });
+    }
+    h.run_steps(2);
+}
+
+fn snapshot_options() -> SnapshotOptions {
+    SnapshotOptions::new().threshold(2.0).max_failed_pixels(40)
+}
+
+#[test]
+fn keys_move_through_the_deck() {
+    let (_dir, path) = lecture_copy();
+    let mut h = harness(&path);
+    h.run_steps(2);
+    let n = h.state().session().deck().slides.len();
+    assert_eq!(index(&h), 0);
+    for key in [Key::ArrowRight, Key::Space, Key::PageDown] {
+        press(&mut h, key);
+    }
+    assert_eq!(index(&h), 3.min(n - 1));
+    for key in [Key::ArrowLeft, Key::PageUp, Key::ArrowUp] {
+        press(&mut h, key);
+    }
+    assert_eq!(index(&h), 0);
+    press(&mut h, Key::ArrowUp);
+    assert_eq!(index(&h), 0, "no wrap before the first slide");
+    press(&mut h, Key::End);
+    assert_eq!(index(&h), n - 1);
+    press(&mut h, Key::ArrowDown);
+    assert_eq!(index(&h), n - 1, "no wrap after the last slide");
+    press(&mut h, Key::Home);
+    assert_eq!(index(&h), 0);
+
+    // G 2 Enter jumps; G 9 9 Enter is refused and leaves the place alone.
+    for key in [Key::G, Key::Num2, Key::Enter] {
+        press(&mut h, key);
+    }
+    assert_eq!(index(&h), 1);
+    for key in [Key::G, Key::Num9, Key::Num9, Key::Enter] {
+        press(&mut h, key);
+    }
+    assert_eq!(index(&h), 1);
+    assert_eq!(*h.state().overlay(), Overlay::None);
+    // G then Esc cancels without moving.
+    for key in [Key::G, Key::Num1, Key::Escape] {
+        press(&mut h, key);
+    }
+    assert_eq!(index(&h), 1);
+    assert_eq!(*h.state().overlay(), Overlay::None);
+}
+
+#[test]
+fn overlays_black_screen_and_scene_mode_toggle_and_escape() {
+    let (_dir, path) = lecture_copy();
+    let mut h = harness(&path);
+    h.run_steps(2);
+    press(&mut h, Key::O);
+    assert_eq!(*h.state().overlay(), Overlay::Overview);
+    press(&mut h, Key::Escape);
+    assert_eq!(*h.state().overlay(), Overlay::None);
+    h.event(Event::Text("?".into()));
+    h.run_steps(2);
+    assert_eq!(*h.state().overlay(), Overlay::Help);
+    press(&mut h, Key::Escape);
+    assert_eq!(*h.state().overlay(), Overlay::None);
+    press(&mut h, Key::B);
+    assert!(h.state().is_black());
+    press(&mut h, Key::Escape);
+    assert!(!h.state().is_black());
+    press(&mut h, Key::Tab);
+    assert_eq!(h.state().mode(), Mode::Scene);
+    press(&mut h, Key::Tab);
+    assert_eq!(h.state().mode(), Mode::Slides);
+}
+
+#[test]
+fn overview_click_jumps_to_that_slide() {
+    let (_dir, path) = lecture_copy();
+    let mut h = harness(&path);
+    h.run_steps(2);
+    press(&mut h, Key::O);
+    // The grid fills the window row by row; the bottom-right quarter holds a later slide.
+    click(&mut h, Pos2::new(SIZE[0] * 0.8, SIZE[1] * 0.8));
+    assert_eq!(*h.state().overlay(), Overlay::None);
+    assert!(index(&h) > 0, "clicked a later thumbnail");
+}
+
+#[test]
+fn click_on_the_slide_goes_forward_but_not_on_a_widget() {
+    let (_dir, path) = lecture_copy();
+    let mut h = harness(&path);
+    h.run_steps(2);
+    // Top-left margin of the title slide: background.
+    click(&mut h, Pos2::new(20.0, 20.0));
+    assert_eq!(index(&h), 1);
+    // Go to the first slide with a live widget and click in its middle (the plot).
+    let with_widget = h
+        .state()
+        .session()
+        .deck()
+        .slides
+        .iter()
+        .position(|s| {
+            s.body
+                .iter()
+                .any(|b| matches!(b, lectern::deck::Block::Widget(_)))
+        })
+        .expect("the lecture has a widget slide");
+    let n = with_widget + 1;
+    for key in [Key::G]
+        .into_iter()
+        .chain(n.to_string().chars().map(|c| digit_key(c)))
+        .chain([Key::Enter])
+    {
+        press(&mut h, key);
+    }
+    assert_eq!(index(&h), with_widget);
+    click(&mut h, Pos2::new(SIZE[0] * 0.5, SIZE[1] * 0.62));
+    assert_eq!(
+        index(&h),
+        with_widget,
+        "a click on a widget does not advance"
+    );
+}
+
+fn digit_key(c: char) -> Key {
+    [
+        Key::Num0,
+        Key::Num1,
+        Key::Num2,
+        Key::Num3,
+        Key::Num4,
+        Key::Num5,
+        Key::Num6,
+        Key::Num7,
+        Key::Num8,
+        Key::Num9,
+    ][c.to_digit(10).unwrap() as usize]
+}
+
+#[test]
+fn broken_save_shows_the_notice_and_keeps_the_slide() {
+    let (_dir, path) = lecture_copy();
+    let mut h = harness(&path);
+    let ctx = h.ctx.clone();
+    h.state_mut().watch(&ctx);
+    std::thread::sleep(Duration::from_millis(100));
+    press(&mut h, Key::ArrowRight);
+    let good = std::fs::read_to_string(&path).unwrap();
+    let broken = good.replacen("slides: [", "slides: [[", 1);
+    std::fs::write(&path, &broken).unwrap();
+    let deadline = Instant::now() + Duration::from_secs(10);
+    while h.state().session().error().is_none() && Instant::now() < deadline {
+        std::thread::sleep(Duration::from_millis(50));
+        h.run_steps(1);
+    }
+    let err = h
+        .state()
+        .session()
+        .error()
+        .expect("the broken save is reported")
+        .clone();
+    assert!(err.line > 0 && err.col > 0, "{err}");
+    assert_eq!(index(&h), 1, "still on the same slide");
+    h.run_steps(2);
+    // The notice names file:line:col (its path is a temp folder, so no snapshot here).
+    let notice = format!("lecture.ron:{}:{}:", err.line, err.col);
+    assert!(
+        h.query_by_label_contains(&notice).is_some(),
+        "no notice with {notice}"
+    );
+
+    std::fs::write(&path, &good).unwrap();
+    let deadline = Instant::now() + Duration::from_secs(10);
+    while h.state().session().error().is_some() && Instant::now() < deadline {
+        std::thread::sleep(Duration::from_millis(50));
+        h.run_steps(1);
+    }
+    assert!(
+        h.state().session().error().is_none(),
+        "the notice goes when fixed"
+    );
+    h.run_steps(2);
+    assert!(h.query_by_label_contains("lecture.ron:").is_none());
+    assert_eq!(index(&h), 1);
+}
+
+#[test]
+fn snapshots_of_title_overview_and_help() {
+    let (_dir, path) = lecture_copy();
+    let mut h = harness(&path);
+    h.run_steps(3);
+    h.snapshot_options("app-title", &snapshot_options());
+    press(&mut h, Key::O);
+    h.run_steps(2);
+    h.snapshot_options("app-overview", &snapshot_options());
+    press(&mut h, Key::O);
+    h.event(Event::Text("?".into()));
+    h.run_steps(3);
+    h.snapshot_options("app-help", &snapshot_options());
+}
