@@ -187,7 +187,17 @@ impl SlideWidget for Convergence {
                 ui.colored_label(style::method_color(*m), egui::RichText::new(txt).strong());
             }
         });
-        log_axes_plot("convergence", "step h", "global error").show(ui, |p| {
+        let h_min = data
+            .iter()
+            .flat_map(|d| d.1.iter().map(|p| p.0))
+            .fold(f64::INFINITY, f64::min);
+        let plot = log_axes_plot("convergence", "step h", "global error");
+        let plot = if h_min.is_finite() {
+            plot.include_x(h_min.log10() - 0.6)
+        } else {
+            plot
+        };
+        plot.show(ui, |p| {
             for (m, pts, slope) in data {
                 let color = style::method_color(*m);
                 let v: Vec<[f64; 2]> = pts
@@ -201,17 +211,18 @@ impl SlideWidget for Convergence {
                         .width(style::PATH_WIDTH),
                 );
                 p.points(Points::new(m.name(), v.clone()).color(color).radius(5.0));
-                if let (Some(s), Some(first)) = (slope, v.first()) {
+                // label at the smallest h, left of the line, in room the x range leaves for it
+                if let (Some(s), Some(last)) = (slope, v.last()) {
                     p.text(
                         Text::new(
                             format!("{} slope", m.name()),
-                            PlotPoint::new(first[0], first[1]),
-                            egui::RichText::new(format!(" slope {s:.2}"))
+                            PlotPoint::new(last[0], last[1]),
+                            egui::RichText::new(format!("slope {s:.2}  "))
                                 .size(22.0)
                                 .strong()
                                 .color(color),
                         )
-                        .anchor(egui::Align2::LEFT_CENTER),
+                        .anchor(egui::Align2::RIGHT_CENTER),
                     );
                 }
             }
