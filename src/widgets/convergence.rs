@@ -57,7 +57,7 @@ const ERR_FLOOR: f64 = 1e-13;
 pub fn errors(spec: &ConvergenceSpec, m: MethodId) -> Vec<(f64, f64)> {
     let sys = spec.field.system();
     let exact = spec.field.exact(0.0, spec.x0, spec.t_end);
-    (0..spec.levels.clamp(2, 16))
+    (0..spec.levels.clamp(2, 12))
         .filter_map(|k| {
             let h = spec.h_max / 2f64.powi(k as i32);
             let n = steps_for(0.0, spec.t_end, h, 1 << 20);
@@ -162,7 +162,7 @@ impl SlideWidget for Convergence {
                     .logarithmic(true)
                     .text("largest h"),
             );
-            ui.add(egui::Slider::new(&mut self.spec.levels, 3..=14).text("halvings"));
+            ui.add(egui::Slider::new(&mut self.spec.levels, 3..=12).text("halvings"));
             ui.checkbox(
                 &mut self.spec.typo,
                 egui::RichText::new("notes' RK4 typo")
@@ -232,7 +232,7 @@ impl SlideWidget for Convergence {
     fn params(&mut self) -> Vec<Param<'_>> {
         vec![
             Param::f64_log("h_max", "largest h", &mut self.spec.h_max, 0.05, 1.0),
-            Param::usize("levels", "halvings", &mut self.spec.levels, 3, 14),
+            Param::usize("levels", "halvings", &mut self.spec.levels, 3, 12),
             Param::bool("typo", "notes' RK4 typo", &mut self.spec.typo),
         ]
     }

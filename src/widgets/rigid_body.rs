@@ -138,7 +138,7 @@ fn yes() -> bool {
 }
 
 /// Steps a frame may take per method; beyond it the view lags rather than stalls the UI.
-const MAX_STEPS_PER_FRAME: usize = 4000;
+const MAX_STEPS_PER_FRAME: usize = 1000;
 const T_MAX: f64 = 600.0;
 
 struct Run {
