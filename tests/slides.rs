@@ -180,6 +180,7 @@ fn every_slide_matches_its_snapshot() {
         let mut h = Harness::builder()
             .with_size(SIZE)
             .with_theme(egui::Theme::Light)
+            .with_context_setup(|ctx| lectern::math::install_egui_fallback_fonts(ctx))
             .wgpu()
             .build_ui(move |ui| {
                 egui::Frame::new()
