@@ -5,6 +5,7 @@
 use std::fmt;
 
 use super::dopri5::Dopri5;
+use super::explicit::Rk4;
 use super::implicit::Implicit;
 use super::symplectic::{SymplecticEuler, Verlet};
 use super::system::Counted;
@@ -104,6 +105,7 @@ impl Solution {
 /// A fixed-step stepper for any method but the adaptive one; owns all scratch space.
 pub enum Stepper {
     Explicit(ExplicitRk),
+    Rk4(Rk4),
     SymplecticEuler(SymplecticEuler),
     Verlet(Verlet),
     Implicit(Implicit),
@@ -113,6 +115,7 @@ impl Stepper {
     /// Dormand–Prince with a fixed step uses its fifth-order weights.
     pub fn new(method: Method, n: usize) -> Self {
         match method {
+            Method::Rk4 => Stepper::Rk4(Rk4::new(n)),
             Method::SymplecticEuler => Stepper::SymplecticEuler(SymplecticEuler::new(n)),
             Method::Verlet => Stepper::Verlet(Verlet::new(n)),
             Method::ImplicitEuler => Stepper::Implicit(Implicit::new(1.0, n)),
@@ -135,6 +138,7 @@ impl Stepper {
     ) -> Result<(), &'static str> {
         match self {
             Stepper::Explicit(s) => s.step(sys, t, x, h),
+            Stepper::Rk4(s) => s.step(sys, t, x, h),
             Stepper::SymplecticEuler(s) => s.step(sys, t, x, h),
             Stepper::Verlet(s) => s.step(sys, t, x, h),
             Stepper::Implicit(s) => return s.step(sys, t, x, h).map_err(|e| e.message()),
