@@ -1,7 +1,27 @@
 //! The water surface as a sum of Gerstner waves (GPU Gems 1, ch. 1), evaluated on the CPU for
-//! buoyancy. Its WGSL twin lives in `shaders/water.wgsl`; both must stay the same formula.
+//! buoyancy and for keeping fish under water.
+//!
+//! **The WGSL twin in `shaders/water.wgsl` must use exactly these formulas** (world is y-up,
+//! waves live in the xz plane). For a rest point `p0 = (x, z)` and time `t`, with `N` waves:
+//!
+//! ```text
+//! k_i   = 2π / wavelength_i                 (wavenumber)
+//! ω_i   = k_i · speed_i                      (angular frequency; crests move along D_i)
+//! θ_i   = k_i (D_i · p0) − ω_i t             (D_i = normalised direction)
+//! Q_i   = steepness_i / (k_i A_i N)          (GPU Gems: Σ Q_i k_i A_i ≤ 1 ⇒ no loops)
+//! P(p0) = ( x + Σ Q_i A_i D_i.x cos θ_i,
+//!           mean_level + Σ A_i sin θ_i,
+//!           z + Σ Q_i A_i D_i.y cos θ_i )
+//! ```
+//!
+//! The normal is the exact one, `∂P/∂z × ∂P/∂x` from the analytic tangents (for a single wave it
+//! equals GPU Gems eq. 12; for several waves it also keeps the cross terms that eq. 12 drops).
+//! Heights at a *world* point need the inverse of the horizontal displacement; [`WaveSum::height`]
+//! finds the rest point by fixed-point iteration, a contraction because Σ Q_i k_i A_i < 1.
 
+use glam::{DVec2, DVec3};
 use serde::{Deserialize, Serialize};
+use std::f64::consts::TAU;
 
 /// One Gerstner wave. `direction` is in the xz plane (normalised on use).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -15,4 +35,172 @@ pub struct GerstnerWave {
     pub steepness: f32,
     /// metres per second (phase speed)
     pub speed: f32,
+}
+
+/// Per-wave constants, precomputed once per evaluation (all f64).
+#[derive(Clone, Copy)]
+struct Terms {
+    dir: DVec2,
+    k: f64,
+    omega: f64,
+    amp: f64,
+    /// Q_i A_i: the horizontal amplitude
+    q_amp: f64,
+}
+
+impl GerstnerWave {
+    fn terms(&self, count: usize) -> Terms {
+        let d = DVec2::new(self.direction[0] as f64, self.direction[1] as f64);
+        let dir = d.try_normalize().unwrap_or(DVec2::X);
+        let wavelength = (self.wavelength as f64).max(1e-6);
+        let k = TAU / wavelength;
+        let amp = if self.amplitude.is_finite() {
+            self.amplitude as f64
+        } else {
+            0.0
+        };
+        let steep = (self.steepness as f64).clamp(0.0, 1.0);
+        // Q_i A_i with Q_i = steepness / (k A N); a wave of zero amplitude moves nothing
+        let q_amp = if amp == 0.0 {
+            0.0
+        } else {
+            steep / (k * count.max(1) as f64)
+        };
+        let speed = if self.speed.is_finite() {
+            self.speed as f64
+        } else {
+            0.0
+        };
+        Terms {
+            dir,
+            k,
+            omega: k * speed,
+            amp,
+            q_amp,
+        }
+    }
+}
+
+/// The whole surface: a sum of Gerstner waves around a mean water level.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(default)]
+pub struct WaveSum {
+    pub waves: Vec<GerstnerWave>,
+    /// metres, world y of the undisturbed surface
+    pub mean_level: f32,
+}
+
+/// Fixed-point iterations used by [`WaveSum::height`]; the error shrinks by the factor
+/// Σ Q_i k_i A_i (≤ mean steepness) per iteration.
+pub const HEIGHT_ITERATIONS: usize = 8;
+
+impl WaveSum {
+    pub fn new(waves: Vec<GerstnerWave>, mean_level: f32) -> Self {
+        Self { waves, mean_level }
+    }
+
+    /// A flat surface at `level`.
+    pub fn calm(level: f32) -> Self {
+        Self {
+            waves: Vec::new(),
+            mean_level: level,
+        }
+    }
+
+    fn terms(&self) -> impl Iterator<Item = Terms> + '_ {
+        let n = self.waves.len();
+        self.waves.iter().map(move |w| w.terms(n))
+    }
+
+    /// Offset of the surface point whose rest position is `rest_xz`, at time `t_secs`
+    /// (x, y above the mean level, z).
+    pub fn displacement(&self, rest_xz: DVec2, t_secs: f64) -> DVec3 {
+        let mut d = DVec3::ZERO;
+        for w in self.terms() {
+            let theta = w.k * w.dir.dot(rest_xz) - w.omega * t_secs;
+            let (s, c) = theta.sin_cos();
+            d.x += w.q_amp * w.dir.x * c;
+            d.y += w.amp * s;
+            d.z += w.q_amp * w.dir.y * c;
+        }
+        d
+    }
+
+    /// World position of the surface point whose rest position is `rest_xz`.
+    pub fn surface_point(&self, rest_xz: DVec2, t_secs: f64) -> DVec3 {
+        let d = self.displacement(rest_xz, t_secs);
+        DVec3::new(
+            rest_xz.x + d.x,
+            self.mean_level as f64 + d.y,
+            rest_xz.y + d.z,
+        )
+    }
+
+    /// Unit normal (y-up) at the surface point whose rest position is `rest_xz`:
+    /// `∂P/∂z × ∂P/∂x` from the analytic tangents.
+    pub fn normal(&self, rest_xz: DVec2, t_secs: f64) -> DVec3 {
+        let mut dx = DVec3::X; // ∂P/∂x
+        let mut dz = DVec3::Z; // ∂P/∂z
+        for w in self.terms() {
+            let theta = w.k * w.dir.dot(rest_xz) - w.omega * t_secs;
+            let (s, c) = theta.sin_cos();
+            // ∂θ/∂x = k D.x, ∂θ/∂z = k D.y
+            let h = -w.q_amp * w.k * s; // derivative factor of the horizontal terms
+            let v = w.amp * w.k * c; // derivative factor of the vertical term
+            dx += DVec3::new(h * w.dir.x * w.dir.x, v * w.dir.x, h * w.dir.y * w.dir.x);
+            dz += DVec3::new(h * w.dir.x * w.dir.y, v * w.dir.y, h * w.dir.y * w.dir.y);
+        }
+        dz.cross(dx).normalize_or(DVec3::Y)
+    }
+
+    /// The rest point whose displaced surface point lies above the world point `world_xz`:
+    /// solves `p0 + D_h(p0) = world_xz` by fixed-point iteration `p0 ← world_xz − D_h(p0)`.
+    pub fn rest_point_under(&self, world_xz: DVec2, t_secs: f64) -> DVec2 {
+        let mut p0 = world_xz;
+        if self.waves.is_empty() {
+            return p0;
+        }
+        for _ in 0..HEIGHT_ITERATIONS {
+            let d = self.displacement(p0, t_secs);
+            p0 = world_xz - DVec2::new(d.x, d.z);
+        }
+        p0
+    }
+
+    /// World y of the surface above (or below) the world point `world_xz` at time `t_secs`.
+    pub fn height(&self, world_xz: DVec2, t_secs: f64) -> f64 {
+        let p0 = self.rest_point_under(world_xz, t_secs);
+        self.mean_level as f64 + self.displacement(p0, t_secs).y
+    }
+
+    /// Unit surface normal above the world point `world_xz`.
+    pub fn normal_at(&self, world_xz: DVec2, t_secs: f64) -> DVec3 {
+        self.normal(self.rest_point_under(world_xz, t_secs), t_secs)
+    }
+
+    /// The lowest the surface can ever be: the mean level minus every amplitude. Below this
+    /// height a point is under water at all times and places.
+    pub fn lowest_level(&self) -> f64 {
+        self.mean_level as f64
+            - self
+                .waves
+                .iter()
+                .map(|w| (w.amplitude as f64).abs())
+                .sum::<f64>()
+    }
+
+    /// The highest the surface can ever be.
+    pub fn highest_level(&self) -> f64 {
+        self.mean_level as f64
+            + self
+                .waves
+                .iter()
+                .map(|w| (w.amplitude as f64).abs())
+                .sum::<f64>()
+    }
+
+    /// Σ Q_i k_i A_i: the contraction factor of the height iteration (< 1 means no loops).
+    pub fn horizontal_steepness(&self) -> f64 {
+        self.terms().map(|w| w.q_amp * w.k).sum()
+    }
 }

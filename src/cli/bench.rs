@@ -1,9 +1,168 @@
-//! `lectern bench`: Work-precision report of the integrators.
+//! `lectern bench`: work-precision report of our integrators (final-time error against
+//! f-evaluations and wall time) on the oscillator, Kepler and the pendulum, plus the cost of
+//! an expression-defined right-hand side against the same one as a native closure.
+//! The comparison with other crates lives in `benches/work_precision.rs` (dev-dependencies).
+
+use std::fmt::Write as _;
+use std::path::PathBuf;
+use std::time::Instant;
+
+use crate::ode::problem::Problem;
+use crate::ode::study::{Point, Sweep, max_error, reference, work_precision};
+use crate::ode::{FnSystem, Method, Scheme, System, solve_fixed_final};
 
 /// Work-precision report of the integrators.
 #[derive(Debug, clap::Args)]
-pub struct Args {}
+pub struct Args {
+    /// Folder with harmonic.ron, kepler.ron and pendulum.ron.
+    #[arg(long, default_value = "slides/problems")]
+    pub problems: PathBuf,
+    /// Write the report (Markdown) here as well as printing it.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Timing repeats per point (the minimum is kept).
+    #[arg(long, default_value_t = 5)]
+    pub repeats: usize,
+}
 
-pub fn run(_args: Args) -> anyhow::Result<()> {
-    anyhow::bail!("`lectern bench` is not built yet")
+/// The benchmark cases: problem file, final time.
+pub const CASES: [(&str, f64); 3] = [
+    ("harmonic", 10.0),
+    ("kepler", std::f64::consts::TAU),
+    ("pendulum", 10.0),
+];
+
+pub fn run(args: Args) -> anyhow::Result<()> {
+    let mut report = String::new();
+    writeln!(
+        report,
+        "# lectern bench: work-precision of our integrators\n"
+    )?;
+    writeln!(
+        report,
+        "Error = max-norm difference of the final state from the exact solution (oscillator), the initial state after one period (Kepler) or a Dormand–Prince rtol 1e-13 reference (pendulum). Time = minimum of {} runs.\n",
+        args.repeats
+    )?;
+    let sweep = Sweep {
+        methods: vec![
+            Method::Euler,
+            Method::Midpoint,
+            Method::Heun,
+            Method::Rk4,
+            Method::Verlet,
+            Method::Dopri5,
+        ],
+        hs: Vec::new(),
+        tols: (3..=12).step_by(1).map(|k| 10f64.powi(-k)).collect(),
+        repeats: args.repeats,
+    };
+    for (name, t_end) in CASES {
+        let p = Problem::load(args.problems.join(format!("{name}.ron")))
+            .map_err(|d| anyhow::anyhow!("{d}"))?;
+        let exact = final_reference(&p, t_end);
+        // h so that the run has 2^k steps, from 64 to 65536
+        let hs = (6..=16).map(|k| t_end / (1u64 << k) as f64).collect();
+        let points = work_precision(
+            &p,
+            p.t0,
+            &p.initial,
+            t_end,
+            &exact,
+            &Sweep {
+                hs,
+                ..sweep.clone()
+            },
+        );
+        writeln!(report, "## {} (t_end = {t_end:.4})\n", p.name)?;
+        write_table(&mut report, &points)?;
+    }
+    writeln!(
+        report,
+        "## Expression right-hand side against a native closure\n"
+    )?;
+    let ratio = expression_vs_native(&args.problems, args.repeats)?;
+    writeln!(report, "{ratio}")?;
+    print!("{report}");
+    if let Some(out) = &args.out {
+        std::fs::write(out, &report)?;
+        eprintln!("wrote {}", out.display());
+    }
+    Ok(())
+}
+
+/// The exact final state, or the initial state for the periodic Kepler orbit, or a tight
+/// Dormand–Prince reference.
+pub fn final_reference(p: &Problem, t_end: f64) -> Vec<f64> {
+    if let Some(e) = p.exact(t_end) {
+        e
+    } else if p.name.starts_with("Kepler") && (t_end - std::f64::consts::TAU).abs() < 1e-12 {
+        p.initial.clone()
+    } else {
+        reference(p, p.t0, &p.initial, t_end)
+    }
+}
+
+fn write_table(out: &mut String, points: &[Point]) -> std::fmt::Result {
+    writeln!(out, "| method | h or tol | error | f-evals | time (µs) |")?;
+    writeln!(out, "|---|---:|---:|---:|---:|")?;
+    for p in points {
+        writeln!(
+            out,
+            "| {} | {:.3e} | {:.3e} | {} | {:.1} |",
+            p.method,
+            p.h_or_tol,
+            p.error,
+            p.f_evals,
+            p.secs * 1e6
+        )?;
+    }
+    writeln!(out)
+}
+
+/// The Kepler right-hand side written by hand, as the expression file has it.
+pub fn kepler_native() -> FnSystem<impl Fn(f64, &[f64], &mut [f64])> {
+    FnSystem::new(4, |_t, x: &[f64], d: &mut [f64]| {
+        let r2 = x[0] * x[0] + x[1] * x[1];
+        let r3 = r2 * r2.sqrt();
+        d[0] = x[2];
+        d[1] = x[3];
+        d[2] = -x[0] / r3;
+        d[3] = -x[1] / r3;
+    })
+}
+
+/// Time of RK4 over one Kepler period (h = 2π/20000) with the expression RHS and with the
+/// native closure; returns a Markdown line with both and their ratio.
+fn expression_vs_native(dir: &std::path::Path, repeats: usize) -> anyhow::Result<String> {
+    let p = Problem::load(dir.join("kepler.ron")).map_err(|d| anyhow::anyhow!("{d}"))?;
+    let native = kepler_native();
+    let h = std::f64::consts::TAU / 20000.0;
+    let time = |sys: &dyn System| {
+        let mut best = f64::INFINITY;
+        let mut last = Vec::new();
+        for _ in 0..repeats.max(3) {
+            let t = Instant::now();
+            let s = solve_fixed_final(
+                sys,
+                Scheme::Method(Method::Rk4),
+                0.0,
+                &p.initial,
+                h,
+                std::f64::consts::TAU,
+                f64::INFINITY,
+            );
+            best = best.min(t.elapsed().as_secs_f64());
+            last = s.last().1.to_vec();
+        }
+        (best, last)
+    };
+    let (t_expr, x_expr) = time(&p);
+    let (t_native, x_native) = time(&native);
+    let diff = max_error(&x_expr, &x_native);
+    Ok(format!(
+        "RK4, Kepler, 20000 steps: expression {:.3} ms, native closure {:.3} ms, ratio {:.2}× (final states differ by {diff:.1e}).\n",
+        t_expr * 1e3,
+        t_native * 1e3,
+        t_expr / t_native
+    ))
 }

@@ -1,9 +1,112 @@
 //! `lectern render-scene`: Render the water scene to PNG frames, headless.
 
+use std::path::PathBuf;
+use std::time::Instant;
+
+use anyhow::{Context, Result};
+
+use crate::render::{DebugView, Headless, SHADER_DIR};
+use crate::scene::{self, DEFAULT_SCENE};
+
 /// Render the water scene to PNG frames, headless.
 #[derive(Debug, clap::Args)]
-pub struct Args {}
+pub struct Args {
+    /// Scene file (default: scenes/water.ron)
+    pub scene: Option<PathBuf>,
+    /// Output folder for frame-0000.png, frame-0001.png, …
+    #[arg(long, default_value = "out/scene")]
+    pub out: PathBuf,
+    /// Number of frames
+    #[arg(long, default_value_t = 1)]
+    pub frames: u32,
+    /// Image size, WxH
+    #[arg(long, default_value = "1280x720", value_parser = parse_size)]
+    pub size: (u32, u32),
+    /// Simulation time of the first frame, seconds
+    #[arg(long, default_value_t = 0.0)]
+    pub time: f64,
+    /// Frames per second of simulated time between frames
+    #[arg(long, default_value_t = 30.0)]
+    pub fps: f64,
+    /// Debug view: none, shadow-map, normals, env-cube
+    #[arg(long, default_value = "none", value_parser = parse_view)]
+    pub view: DebugView,
+    /// Folder of the WGSL shaders
+    #[arg(long, default_value = SHADER_DIR)]
+    pub shaders: PathBuf,
+}
 
-pub fn run(_args: Args) -> anyhow::Result<()> {
-    anyhow::bail!("`lectern render-scene` is not built yet")
+pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("size {s:?} must be WxH, e.g. 1280x720"))?;
+    let w: u32 = w
+        .trim()
+        .parse()
+        .map_err(|_| format!("bad width in {s:?}"))?;
+    let h: u32 = h
+        .trim()
+        .parse()
+        .map_err(|_| format!("bad height in {s:?}"))?;
+    if !(1..=8192).contains(&w) || !(1..=8192).contains(&h) {
+        return Err(format!("size {w}x{h}: each side must be 1..=8192"));
+    }
+    Ok((w, h))
+}
+
+pub fn parse_view(s: &str) -> Result<DebugView, String> {
+    match s {
+        "none" | "final" => Ok(DebugView::None),
+        "shadow-map" | "shadow" => Ok(DebugView::ShadowMap),
+        "normals" => Ok(DebugView::Normals),
+        "env-cube" | "env" => Ok(DebugView::EnvCube),
+        _ => Err(format!(
+            "unknown view {s:?}: none, shadow-map, normals, env-cube"
+        )),
+    }
+}
+
+pub fn run(args: Args) -> Result<()> {
+    anyhow::ensure!(
+        args.frames <= 100_000,
+        "--frames {} is too many (at most 100000)",
+        args.frames
+    );
+    anyhow::ensure!(
+        args.fps.is_finite() && args.fps > 0.0,
+        "--fps must be positive"
+    );
+    anyhow::ensure!(
+        args.time.is_finite() && args.time >= 0.0,
+        "--time must be a non-negative number of seconds"
+    );
+    let path = args.scene.unwrap_or_else(|| PathBuf::from(DEFAULT_SCENE));
+    let scene = scene::load_scene(&path)?;
+    let t0 = Instant::now();
+    let mut h = Headless::new(scene, &args.shaders)?;
+    h.settings.debug_view = args.view;
+    let setup = t0.elapsed();
+    std::fs::create_dir_all(&args.out)
+        .with_context(|| format!("creating {}", args.out.display()))?;
+    let t1 = Instant::now();
+    for i in 0..args.frames {
+        h.sim.set_time(args.time + i as f64 / args.fps);
+        let img = h.render(args.size)?;
+        let file = args.out.join(format!("frame-{i:04}.png"));
+        img.save(&file)
+            .with_context(|| format!("writing {}", file.display()))?;
+    }
+    let info = &h.gpu.adapter_info;
+    eprintln!(
+        "rendered {} frame(s) {}x{} on {} ({:?}) in {:.2} s (+{:.2} s setup) to {}",
+        args.frames,
+        args.size.0,
+        args.size.1,
+        info.name,
+        info.backend,
+        t1.elapsed().as_secs_f64(),
+        setup.as_secs_f64(),
+        args.out.display()
+    );
+    Ok(())
 }

@@ -3,10 +3,25 @@
 //! No GPU or UI types here. Stepping is allocation-free: a stepper owns its scratch space,
 //! sized once for the system's dimension.
 
+pub mod dopri5;
 pub mod explicit;
+pub mod expr;
+pub mod implicit;
+pub mod method;
+pub mod problem;
+pub mod solve;
+pub mod stability;
+pub mod study;
+pub mod symplectic;
 pub mod system;
 pub mod tableau;
 
 pub use explicit::ExplicitRk;
-pub use system::{FnSystem, System};
-pub use tableau::Tableau;
+pub use method::Method;
+pub use solve::{
+    Adaptive, Outcome, Scheme, Solution, Stepper, solve_adaptive, solve_fixed, solve_fixed_final,
+    solve_implicit_adaptive, solve_tableau,
+};
+pub use stability::{Complex, real_axis_limit};
+pub use system::{Counted, FnSystem, System};
+pub use tableau::{OrderCondition, Tableau};

@@ -6,6 +6,11 @@ pub trait System {
     fn dim(&self) -> usize;
     /// Writes f(t, x) into `dxdt` (both of length `dim()`).
     fn rhs(&self, t: f64, x: &[f64], dxdt: &mut [f64]);
+    /// Writes the Jacobian ∂f_i/∂x_j row-major into `jac` (`dim()²` values) and returns true,
+    /// or returns false when there is no analytic one (implicit methods then use differences).
+    fn jacobian(&self, _t: f64, _x: &[f64], _jac: &mut [f64]) -> bool {
+        false
+    }
 }
 
 /// A system from a closure, for tests, widgets and native benchmarks.
@@ -35,5 +40,37 @@ impl<S: System + ?Sized> System for &S {
     }
     fn rhs(&self, t: f64, x: &[f64], dxdt: &mut [f64]) {
         (**self).rhs(t, x, dxdt)
+    }
+    fn jacobian(&self, t: f64, x: &[f64], jac: &mut [f64]) -> bool {
+        (**self).jacobian(t, x, jac)
+    }
+}
+
+/// Counts the f-evaluations of a wrapped system (a `Cell`, so stepping stays `&self`).
+pub struct Counted<'a, S: ?Sized> {
+    pub sys: &'a S,
+    pub evals: std::cell::Cell<u64>,
+}
+
+impl<'a, S: System + ?Sized> Counted<'a, S> {
+    pub fn new(sys: &'a S) -> Self {
+        Self {
+            sys,
+            evals: std::cell::Cell::new(0),
+        }
+    }
+}
+
+impl<S: System + ?Sized> System for Counted<'_, S> {
+    fn dim(&self) -> usize {
+        self.sys.dim()
+    }
+    #[inline]
+    fn rhs(&self, t: f64, x: &[f64], dxdt: &mut [f64]) {
+        self.evals.set(self.evals.get() + 1);
+        self.sys.rhs(t, x, dxdt)
+    }
+    fn jacobian(&self, t: f64, x: &[f64], jac: &mut [f64]) -> bool {
+        self.sys.jacobian(t, x, jac)
     }
 }

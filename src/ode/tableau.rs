@@ -1,6 +1,10 @@
 //! Butcher tableaux of explicit Runge–Kutta methods.
 
+use std::path::Path;
+
 use serde::{Deserialize, Serialize};
+
+use crate::diag::Diagnostic;
 
 /// An explicit Runge–Kutta method: `k_i = f(x + h Σ_j<i a_ij k_j, t + c_i h)`,
 /// `x(t+h) = x + h Σ b_i k_i`. `a` is stored as full rows; entries on or above the diagonal
@@ -63,3 +67,270 @@ impl Tableau {
         }
     }
 }
+
+impl Tableau {
+    /// Dormand–Prince 5(4): the six stages and fifth-order weights that propagate the solution
+    /// (the seventh, FSAL stage only feeds the error estimate; see `dopri5.rs`).
+    pub fn dopri5() -> Self {
+        let a = DP_A;
+        let mut rows = Vec::new();
+        for i in 0..6 {
+            let mut row = vec![0.0; 6];
+            row[..6].copy_from_slice(&a[i][..6]);
+            rows.push(row);
+        }
+        Self {
+            name: "Dormand–Prince 5".into(),
+            a: rows,
+            b: DP_B[..6].to_vec(),
+            c: DP_C[..6].to_vec(),
+        }
+    }
+
+    /// The notes' "RK4" with its typo (ERRATA 1): `k4 = h f(x0 + k3/2)`. The stage samples at
+    /// t + h/2 so that c stays the row sum of a. Only first order; shipped to show the drop.
+    pub fn rk4_typo() -> Self {
+        Self {
+            name: "RK4 as printed (typo)".into(),
+            a: vec![
+                vec![0.0, 0.0, 0.0, 0.0],
+                vec![0.5, 0.0, 0.0, 0.0],
+                vec![0.0, 0.5, 0.0, 0.0],
+                vec![0.0, 0.0, 0.5, 0.0],
+            ],
+            b: vec![1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0],
+            c: vec![0.0, 0.5, 0.5, 0.5],
+        }
+    }
+
+    /// Ralston's second-order method (minimum error bound among 2-stage methods).
+    pub fn ralston() -> Self {
+        Self {
+            name: "Ralston".into(),
+            a: vec![vec![0.0, 0.0], vec![2.0 / 3.0, 0.0]],
+            b: vec![0.25, 0.75],
+            c: vec![0.0, 2.0 / 3.0],
+        }
+    }
+
+    /// Reads and validates a tableau file (RON, fields `name, a, b, c`).
+    pub fn load(path: impl AsRef<Path>) -> Result<Self, Diagnostic> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| Diagnostic::whole_file(path, format!("cannot read tableau: {e}")))?;
+        Self::parse(&text, path)
+    }
+
+    /// Parses and validates tableau text; `path` only names the file in errors.
+    pub fn parse(text: &str, path: impl AsRef<Path>) -> Result<Self, Diagnostic> {
+        let path = path.as_ref();
+        let tab: Tableau = ron::from_str(text).map_err(|e| Diagnostic::from_ron(path, &e))?;
+        tab.validate()
+            .map_err(|m| Diagnostic::whole_file(path, m))?;
+        Ok(tab)
+    }
+
+    /// Checks sizes, finiteness and explicitness (`a` strictly lower triangular).
+    pub fn validate(&self) -> Result<(), String> {
+        let s = self.b.len();
+        if s == 0 {
+            return Err("tableau has no stages (b is empty)".into());
+        }
+        if self.c.len() != s {
+            return Err(format!("c has {} entries but b has {s}", self.c.len()));
+        }
+        if self.a.len() != s {
+            return Err(format!("a has {} rows but b has {s} entries", self.a.len()));
+        }
+        for (i, row) in self.a.iter().enumerate() {
+            if row.len() != s {
+                return Err(format!(
+                    "row {} of a has {} entries, expected {s}",
+                    i + 1,
+                    row.len()
+                ));
+            }
+            for (j, &v) in row.iter().enumerate() {
+                if !v.is_finite() {
+                    return Err(format!("a[{}][{}] is not finite", i + 1, j + 1));
+                }
+                if j >= i && v != 0.0 {
+                    return Err(format!(
+                        "a[{}][{}] = {v} is on or above the diagonal: only explicit methods are supported",
+                        i + 1,
+                        j + 1
+                    ));
+                }
+            }
+        }
+        if let Some(v) = self.b.iter().chain(&self.c).find(|v| !v.is_finite()) {
+            return Err(format!("b or c holds a non-finite value {v}"));
+        }
+        Ok(())
+    }
+
+    /// Residuals of the order conditions (Butcher trees up to order 4), each with its name.
+    /// A method has order p when every condition of order ≤ p holds (and c is the row sum of a).
+    pub fn order_conditions(&self) -> Vec<OrderCondition> {
+        let s = self.stages();
+        let (a, b, c) = (&self.a, &self.b, &self.c);
+        let ac: Vec<f64> = (0..s)
+            .map(|i| (0..s).map(|j| a[i][j] * c[j]).sum())
+            .collect();
+        let ac2: Vec<f64> = (0..s)
+            .map(|i| (0..s).map(|j| a[i][j] * c[j] * c[j]).sum())
+            .collect();
+        let aac: Vec<f64> = (0..s)
+            .map(|i| (0..s).map(|j| a[i][j] * ac[j]).sum())
+            .collect();
+        let dot = |f: &dyn Fn(usize) -> f64| (0..s).map(|i| b[i] * f(i)).sum::<f64>();
+        let mut out = Vec::new();
+        let mut push = |order, name: &'static str, value: f64, target: f64| {
+            out.push(OrderCondition {
+                order,
+                name,
+                residual: value - target,
+            })
+        };
+        push(1, "Σ b = 1", dot(&|_| 1.0), 1.0);
+        push(2, "Σ b c = 1/2", dot(&|i| c[i]), 0.5);
+        push(3, "Σ b c² = 1/3", dot(&|i| c[i] * c[i]), 1.0 / 3.0);
+        push(3, "Σ b A c = 1/6", dot(&|i| ac[i]), 1.0 / 6.0);
+        push(4, "Σ b c³ = 1/4", dot(&|i| c[i].powi(3)), 0.25);
+        push(4, "Σ b c A c = 1/8", dot(&|i| c[i] * ac[i]), 0.125);
+        push(4, "Σ b A c² = 1/12", dot(&|i| ac2[i]), 1.0 / 12.0);
+        push(4, "Σ b A A c = 1/24", dot(&|i| aac[i]), 1.0 / 24.0);
+        out
+    }
+
+    /// Whether `c_i = Σ_j a_ij` for every stage (assumed by the order conditions above).
+    pub fn row_sums_consistent(&self) -> bool {
+        self.a
+            .iter()
+            .zip(&self.c)
+            .all(|(row, &c)| (row.iter().sum::<f64>() - c).abs() < 1e-12)
+    }
+
+    /// The highest order p ≤ 4 whose conditions (and all lower ones) hold to 1e-12.
+    pub fn order(&self) -> u32 {
+        let conds = self.order_conditions();
+        let mut p = 0;
+        for order in 1..=4 {
+            if conds
+                .iter()
+                .filter(|c| c.order == order)
+                .all(|c| c.residual.abs() < 1e-12)
+            {
+                p = order;
+            } else {
+                break;
+            }
+        }
+        p
+    }
+}
+
+/// One order condition of a tableau and how far it is from holding.
+#[derive(Debug, Clone, PartialEq)]
+pub struct OrderCondition {
+    pub order: u32,
+    pub name: &'static str,
+    pub residual: f64,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn orders_of_the_builtin_tableaux() {
+        assert_eq!(Tableau::euler().order(), 1);
+        assert_eq!(Tableau::midpoint().order(), 2);
+        assert_eq!(Tableau::heun().order(), 2);
+        assert_eq!(Tableau::ralston().order(), 2);
+        assert_eq!(Tableau::rk4().order(), 4);
+        // our checks stop at order 4
+        assert_eq!(Tableau::dopri5().order(), 4);
+        assert!(Tableau::dopri5().row_sums_consistent());
+        // the typo breaks Σ b c = 1/2: first order only
+        assert_eq!(Tableau::rk4_typo().order(), 1);
+        for t in [Tableau::rk4(), Tableau::rk4_typo(), Tableau::heun()] {
+            assert!(t.row_sums_consistent());
+            t.validate().unwrap();
+        }
+    }
+
+    #[test]
+    fn implicit_and_misshapen_tableaux_are_rejected() {
+        let mut t = Tableau::heun();
+        t.a[0][0] = 0.5;
+        assert!(t.validate().unwrap_err().contains("explicit"));
+        let mut t = Tableau::heun();
+        t.c.pop();
+        assert!(t.validate().is_err());
+        let d = Tableau::parse(
+            "(name: \"x\", a: [[0.0]], b: [1.0], c: [0.0, 1.0])",
+            "t.ron",
+        )
+        .unwrap_err();
+        assert!(d.message.contains("c has 2"), "{d}");
+        let d = Tableau::parse("(name: \"x\",\n a: [[0.0]] b: [1.0])", "t.ron").unwrap_err();
+        assert_eq!(d.line, 2, "{d}");
+    }
+}
+
+/// Dormand–Prince 5(4) coefficients (Dormand & Prince 1980; Hairer, Nørsett & Wanner I, II.5).
+pub(crate) const DP_C: [f64; 7] = [0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0, 1.0];
+pub(crate) const DP_A: [[f64; 7]; 7] = [
+    [0.0; 7],
+    [1.0 / 5.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+    [3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+    [44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0, 0.0, 0.0, 0.0, 0.0],
+    [
+        19372.0 / 6561.0,
+        -25360.0 / 2187.0,
+        64448.0 / 6561.0,
+        -212.0 / 729.0,
+        0.0,
+        0.0,
+        0.0,
+    ],
+    [
+        9017.0 / 3168.0,
+        -355.0 / 33.0,
+        46732.0 / 5247.0,
+        49.0 / 176.0,
+        -5103.0 / 18656.0,
+        0.0,
+        0.0,
+    ],
+    [
+        35.0 / 384.0,
+        0.0,
+        500.0 / 1113.0,
+        125.0 / 192.0,
+        -2187.0 / 6784.0,
+        11.0 / 84.0,
+        0.0,
+    ],
+];
+/// Fifth-order weights (equal to the last row of `DP_A`: first same as last).
+pub(crate) const DP_B: [f64; 7] = [
+    35.0 / 384.0,
+    0.0,
+    500.0 / 1113.0,
+    125.0 / 192.0,
+    -2187.0 / 6784.0,
+    11.0 / 84.0,
+    0.0,
+];
+/// Fifth- minus fourth-order weights: the local error estimate.
+pub(crate) const DP_E: [f64; 7] = [
+    71.0 / 57600.0,
+    0.0,
+    -71.0 / 16695.0,
+    71.0 / 1920.0,
+    -17253.0 / 339200.0,
+    22.0 / 525.0,
+    -1.0 / 40.0,
+];

@@ -1,28 +1,108 @@
 //! Slide widgets: live plots and views computed by the project's own integrators.
-//! Each widget lives in its own file: a `*Spec` (what the deck file says) and a state that
-//! owns the live, tweakable values and draws itself with `ui`.
+//!
+//! Each widget lives in its own file: a `*Spec` (what the deck file says, and also the live,
+//! tweakable state) and a widget struct that owns the spec, caches keyed by it, and draws with
+//! `ui`. Tweaks made during the talk are plain values inside the spec, listed by
+//! [`SlideWidget::params`] under stable ids, so the presenter view can show them, keep them
+//! across reloads ([`params::snapshot`] / [`params::restore`]) and write them back to the deck
+//! ([`SlideWidget::spec`]).
 
 use serde::{Deserialize, Serialize};
 
+/// Implements the spec/reset plumbing shared by every widget whose live values are its spec
+/// (`self.spec`, deck values in `self.initial`).
+macro_rules! spec_plumbing {
+    ($variant:ident) => {
+        fn reset(&mut self) {
+            self.spec = self.initial.clone();
+        }
+        fn spec(&self) -> $crate::widgets::WidgetSpec {
+            $crate::widgets::WidgetSpec::$variant(self.spec.clone())
+        }
+    };
+}
+
+pub mod convergence;
+pub mod methods;
+pub mod neptune;
+pub mod params;
+pub mod problems;
+pub mod rigid_body;
+pub mod slope_field;
 pub mod spiral;
+pub mod stability;
+pub mod step_construction;
+pub mod style;
+pub mod taylor;
+pub mod work_precision;
+
+pub use methods::MethodId;
+pub use params::{Param, ParamSnapshot, ParamValue};
 
 /// Which widget a slide shows, with its parameters from the deck file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub enum WidgetSpec {
-    /// Euler turns the circle x'' = -x into a spiral (the "inaccuracy" picture).
+    /// 1. Slope field of ẋ = f(x, t) or a phase plane, with Euler / midpoint / RK4 / exact paths.
+    SlopeField(slope_field::SlopeFieldSpec),
+    /// 2. One step of Euler, midpoint and RK4, built up stage by stage.
+    StepConstruction(step_construction::StepSpec),
+    /// 3. Euler turns the circle x'' = −x into a spiral (the "inaccuracy" picture).
     Spiral(spiral::SpiralSpec),
+    /// 4. "Off to Neptune": y' = λy or the oscillator with h across the stability limit.
+    Neptune(neptune::NeptuneSpec),
+    /// 5. Taylor polynomials of order 1, 2, 3, … around a point.
+    Taylor(taylor::TaylorSpec),
+    /// 6. Global error vs h on log–log axes with fitted slopes.
+    Convergence(convergence::ConvergenceSpec),
+    /// 7. Work–precision: error vs f-evaluations and vs time, computed in the background.
+    WorkPrecision(work_precision::WorkPrecisionSpec),
+    /// 8. Stability regions |R(z)| ≤ 1 in the complex plane.
+    Stability(stability::StabilitySpec),
+    /// 9. A tumbling box near its intermediate axis (the Dzhanibekov flip).
+    RigidBody(rigid_body::RigidBodySpec),
 }
 
 /// A widget's live state; created from its spec, kept while the slide is on screen.
-pub trait SlideWidget {
-    /// Draws the widget into the space `ui` offers and handles its input.
+pub trait SlideWidget: Send {
+    /// Draws the widget into the space `ui` offers and handles its mouse and key input.
     fn ui(&mut self, ui: &mut egui::Ui);
+    /// The tweakable values, by stable id, as mutable views.
+    fn params(&mut self) -> Vec<Param<'_>>;
+    /// Back to the values the deck file gave.
+    fn reset(&mut self);
+    /// The current values as a spec, to write back to the deck file.
+    fn spec(&self) -> WidgetSpec;
 }
 
 impl WidgetSpec {
     pub fn instantiate(&self) -> Box<dyn SlideWidget> {
         match self {
+            WidgetSpec::SlopeField(s) => Box::new(slope_field::SlopeField::new(s.clone())),
+            WidgetSpec::StepConstruction(s) => {
+                Box::new(step_construction::StepConstruction::new(s.clone()))
+            }
             WidgetSpec::Spiral(s) => Box::new(spiral::Spiral::new(s.clone())),
+            WidgetSpec::Neptune(s) => Box::new(neptune::Neptune::new(s.clone())),
+            WidgetSpec::Taylor(s) => Box::new(taylor::Taylor::new(s.clone())),
+            WidgetSpec::Convergence(s) => Box::new(convergence::Convergence::new(s.clone())),
+            WidgetSpec::WorkPrecision(s) => Box::new(work_precision::WorkPrecision::new(s.clone())),
+            WidgetSpec::Stability(s) => Box::new(stability::Stability::new(s.clone())),
+            WidgetSpec::RigidBody(s) => Box::new(rigid_body::RigidBodyView::new(s.clone())),
+        }
+    }
+
+    /// A short name for lists and snapshot files.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            WidgetSpec::SlopeField(_) => "slope-field",
+            WidgetSpec::StepConstruction(_) => "step-construction",
+            WidgetSpec::Spiral(_) => "spiral",
+            WidgetSpec::Neptune(_) => "neptune",
+            WidgetSpec::Taylor(_) => "taylor",
+            WidgetSpec::Convergence(_) => "convergence",
+            WidgetSpec::WorkPrecision(_) => "work-precision",
+            WidgetSpec::Stability(_) => "stability",
+            WidgetSpec::RigidBody(_) => "rigid-body",
         }
     }
 }

@@ -1,18 +1,25 @@
-//! Inaccuracy: explicit Euler on the circle ẋ = (−y, x) spirals outwards; the radius grows by
-//! √(1 + h²) per step.
+//! 3. Inaccuracy: explicit Euler on the circle (ẋ, ẏ) = (−y, x) spirals outwards (its radius
+//! grows by √(1 + h²) per step); midpoint drifts far less and RK4 stays on the circle at
+//! lecture scale. The radius after each revolution is printed under each panel.
 
-use egui_plot::{Line, Plot, PlotPoints};
+use egui_plot::{Line, Plot, PlotPoints, Points};
 use serde::{Deserialize, Serialize};
 
-use super::SlideWidget;
-use crate::ode::{ExplicitRk, FnSystem, Tableau};
+use super::methods::{MethodId, Path, fixed_path, steps_for};
+use super::problems::Field2;
+use super::style::{self, fmt_num};
+use super::{Param, SlideWidget};
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct SpiralSpec {
     #[serde(default = "default_h")]
     pub h: f64,
     #[serde(default = "default_turns")]
     pub turns: f64,
+    /// Draw the midpoint and RK4 panels beside Euler's.
+    #[serde(default = "yes")]
+    pub compare: bool,
 }
 
 fn default_h() -> f64 {
@@ -21,53 +28,184 @@ fn default_h() -> f64 {
 fn default_turns() -> f64 {
     3.0
 }
+fn yes() -> bool {
+    true
+}
+
+const H_RANGE: (f64, f64) = (0.005, 1.0);
+const MAX_STEPS: usize = 20_000;
 
 pub struct Spiral {
     pub spec: SpiralSpec,
+    initial: SpiralSpec,
+    cache: Option<(SpiralSpec, Vec<(MethodId, Path, Vec<f64>)>)>,
 }
 
 impl Spiral {
     pub fn new(spec: SpiralSpec) -> Self {
-        Self { spec }
+        Self {
+            initial: spec.clone(),
+            spec,
+            cache: None,
+        }
     }
 
-    /// The Euler path from (1, 0) over `turns` revolutions.
-    pub fn euler_path(&self) -> Vec<[f64; 2]> {
-        let sys = FnSystem::new(2, |_t, x: &[f64], d: &mut [f64]| {
-            d[0] = -x[1];
-            d[1] = x[0];
-        });
-        let h = self.spec.h.clamp(1e-4, 2.0);
-        let steps = ((self.spec.turns * std::f64::consts::TAU / h).ceil() as usize).min(100_000);
-        let mut rk = ExplicitRk::new(Tableau::euler(), 2);
-        let mut x = [1.0, 0.0];
-        let mut pts = Vec::with_capacity(steps + 1);
-        pts.push(x);
-        for i in 0..steps {
-            rk.step(&sys, i as f64 * h, &mut x, h);
-            pts.push(x);
+    fn methods(&self) -> &'static [MethodId] {
+        if self.spec.compare {
+            &MethodId::INTEGRATORS
+        } else {
+            &[MethodId::Euler]
         }
-        pts
+    }
+
+    /// The path of `m` from (1, 0) over `turns` revolutions, and its radius after each one.
+    pub fn path(&self, m: MethodId) -> (Path, Vec<f64>) {
+        let h = self.spec.h.clamp(H_RANGE.0, H_RANGE.1);
+        let t_end = self.spec.turns.clamp(0.1, 20.0) * std::f64::consts::TAU;
+        let n = steps_for(0.0, t_end, h, MAX_STEPS);
+        let sys = Field2::Circle.system();
+        let p = fixed_path(&sys, m.tableau().unwrap(), 0.0, &[1.0, 0.0], h, n, 1e6);
+        let revs = (1..)
+            .map(|k| (k as f64 * std::f64::consts::TAU / h).round() as usize)
+            .take_while(|&i| i < p.xs.len())
+            .map(|i| p.xs[i][0].hypot(p.xs[i][1]))
+            .collect();
+        (p, revs)
+    }
+
+    /// The Euler path alone (kept for callers of the seed API).
+    pub fn euler_path(&self) -> Vec<[f64; 2]> {
+        self.path(MethodId::Euler)
+            .0
+            .xs
+            .iter()
+            .map(|x| [x[0], x[1]])
+            .collect()
+    }
+
+    fn update(&mut self) {
+        if self.cache.as_ref().is_some_and(|(s, _)| *s == self.spec) {
+            return;
+        }
+        let data = self
+            .methods()
+            .iter()
+            .map(|&m| {
+                let (p, r) = self.path(m);
+                (m, p, r)
+            })
+            .collect();
+        self.cache = Some((self.spec.clone(), data));
     }
 }
 
 impl SlideWidget for Spiral {
     fn ui(&mut self, ui: &mut egui::Ui) {
-        ui.add(
-            egui::Slider::new(&mut self.spec.h, 0.01..=1.0)
-                .logarithmic(true)
-                .text("h"),
-        );
-        let circle: PlotPoints = (0..=256)
-            .map(|i| {
-                let a = i as f64 / 256.0 * std::f64::consts::TAU;
-                [a.cos(), a.sin()]
-            })
-            .collect();
-        let euler = PlotPoints::from(self.euler_path());
-        Plot::new("spiral").data_aspect(1.0).show(ui, |p| {
-            p.line(Line::new("exact", circle));
-            p.line(Line::new("Euler", euler));
+        style::projector_text(ui);
+        let k = style::keys(ui);
+        if k.h_up {
+            self.spec.h *= style::H_KEY_FACTOR;
+        }
+        if k.h_down {
+            self.spec.h /= style::H_KEY_FACTOR;
+        }
+        self.spec.h = self.spec.h.clamp(H_RANGE.0, H_RANGE.1);
+        ui.horizontal(|ui| {
+            ui.add(
+                egui::Slider::new(&mut self.spec.h, H_RANGE.0..=H_RANGE.1)
+                    .logarithmic(true)
+                    .text("h"),
+            );
+            ui.label(format!(
+                "Euler grows r by √(1+h²) = {:.4} per step",
+                (1.0 + self.spec.h.powi(2)).sqrt()
+            ));
         });
+        self.update();
+        let Some((_, data)) = &self.cache else { return };
+        let n = data.len() as f32;
+        let spacing = ui.spacing().item_spacing.x;
+        let w = ((ui.available_width() - spacing * (n - 1.0)) / n).max(50.0);
+        let plot_h = (ui.available_height() - 70.0).max(80.0);
+        let side = w.min(plot_h);
+        ui.horizontal_top(|ui| {
+            for (m, path, revs) in data {
+                ui.vertical(|ui| {
+                    ui.set_width(w);
+                    let color = style::method_color(*m);
+                    let circle: PlotPoints = (0..=256)
+                        .map(|i| {
+                            let a = i as f64 / 256.0 * std::f64::consts::TAU;
+                            [a.cos(), a.sin()]
+                        })
+                        .collect();
+                    let pts: Vec<[f64; 2]> = path.xs.iter().map(|x| [x[0], x[1]]).collect();
+                    let end = *pts.last().unwrap_or(&[1.0, 0.0]);
+                    let lim = pts
+                        .iter()
+                        .map(|p| p[0].abs().max(p[1].abs()))
+                        .fold(1.2, f64::max)
+                        * 1.05;
+                    Plot::new(format!("spiral-{}", m.name()))
+                        .width(w)
+                        .height(side)
+                        .data_aspect(1.0)
+                        .allow_drag(false)
+                        .allow_zoom(false)
+                        .allow_scroll(false)
+                        .show_x(false)
+                        .show_y(false)
+                        .default_x_bounds(-lim, lim)
+                        .default_y_bounds(-lim, lim)
+                        .show(ui, |p| {
+                            p.line(
+                                Line::new("exact", circle)
+                                    .color(style::EXACT)
+                                    .width(1.5)
+                                    .style(egui_plot::LineStyle::dashed_loose()),
+                            );
+                            p.line(
+                                Line::new(m.name(), pts)
+                                    .color(color)
+                                    .width(style::PATH_WIDTH),
+                            );
+                            p.points(Points::new("end", vec![end]).color(color).radius(5.0));
+                        });
+                    ui.colored_label(color, egui::RichText::new(m.name()).strong());
+                    let radii: Vec<String> = revs.iter().take(4).map(|r| fmt_num(*r)).collect();
+                    ui.label(format!("r per turn: {}", radii.join(", ")));
+                });
+            }
+        });
+    }
+
+    fn params(&mut self) -> Vec<Param<'_>> {
+        vec![
+            Param::f64_log("h", "step h", &mut self.spec.h, H_RANGE.0, H_RANGE.1),
+            Param::f64("turns", "revolutions", &mut self.spec.turns, 0.5, 10.0),
+            Param::bool("compare", "midpoint and RK4 beside", &mut self.spec.compare),
+        ]
+    }
+
+    spec_plumbing!(Spiral);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn euler_radius_per_revolution_matches_theory() {
+        let s = Spiral::new(SpiralSpec {
+            h: 0.1,
+            turns: 2.0,
+            compare: true,
+        });
+        let (_, revs) = s.path(MethodId::Euler);
+        let n1 = (std::f64::consts::TAU / 0.1).round();
+        let expected = (1.0f64 + 0.01).powf(n1 / 2.0);
+        assert!((revs[0] - expected).abs() < 1e-9, "{revs:?} vs {expected}");
+        let (_, rk4) = s.path(MethodId::Rk4);
+        assert!((rk4[0] - 1.0).abs() < 1e-5, "{rk4:?}");
     }
 }

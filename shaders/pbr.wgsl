@@ -1,0 +1,76 @@
+// pbr.wgsl — opaque meshes (seabed, rocks, floating bodies): vertex + index buffers with an
+// explicit layout (position, normal, tangent with handedness, uv), tangent-space normal mapping
+// (Blinn 1978 bump mapping; Mikkelsen 2008 tangent frames) and the Cook–Torrance BRDF of
+// brdf.wgsl with sun shadows (Williams 1978 shadow maps; Reeves et al. 1987 PCF).
+//!include common.wgsl
+//!include brdf.wgsl
+
+struct Object {
+    world_from_object: mat4x4f,
+    // x: 1 = use world xz as uv (terrain), y ambient occlusion
+    flags: vec4f,
+}
+
+@group(1) @binding(0) var<uniform> material: MaterialParams;
+@group(1) @binding(1) var normal_map: texture_2d<f32>;
+@group(1) @binding(2) var material_sampler: sampler;
+@group(2) @binding(0) var<uniform> object: Object;
+
+struct VertexIn {
+    @location(0) position: vec3f,
+    @location(1) normal: vec3f,
+    @location(2) tangent: vec4f,
+    @location(3) uv: vec2f,
+}
+
+struct VertexOut {
+    @builtin(position) clip: vec4f,
+    @location(0) world_pos: vec3f,
+    @location(1) normal: vec3f,
+    @location(2) tangent: vec4f,
+    @location(3) uv: vec2f,
+}
+
+@vertex
+fn vs_main(in: VertexIn) -> VertexOut {
+    let world = object.world_from_object * vec4f(in.position, 1.0);
+    // uniform scale only, so the upper 3×3 transforms normals correctly
+    let m = mat3x3f(object.world_from_object[0].xyz, object.world_from_object[1].xyz, object.world_from_object[2].xyz);
+    var out: VertexOut;
+    out.clip = g.clip_from_world * world;
+    out.world_pos = world.xyz;
+    out.normal = normalize(m * in.normal);
+    out.tangent = vec4f(normalize(m * in.tangent.xyz), in.tangent.w);
+    if (object.flags.x > 0.5) {
+        out.uv = world.xz * material.uv.x;
+    } else {
+        out.uv = in.uv * material.uv.x;
+    }
+    return out;
+}
+
+// Perturbs the interpolated normal with the tangent-space normal map (stored linear, [0,1]).
+fn mapped_normal(n_in: vec3f, t_in: vec4f, uv: vec2f, strength: f32) -> vec3f {
+    let n = normalize(n_in);
+    if (!toggle(g.toggles.y)) {
+        return n;
+    }
+    // Gram–Schmidt: re-orthogonalise the interpolated tangent against the normal
+    let t = normalize(t_in.xyz - n * dot(n, t_in.xyz));
+    let b = cross(n, t) * t_in.w;
+    var tn = textureSample(normal_map, material_sampler, uv).xyz * 2.0 - 1.0;
+    tn = vec3f(tn.xy * strength, tn.z);
+    return normalize(mat3x3f(t, b, n) * tn);
+}
+
+@fragment
+fn fs_main(in: VertexOut) -> @location(0) vec4f {
+    let n = mapped_normal(in.normal, in.tangent, in.uv, material.params.w);
+    if (debug_view() == DEBUG_NORMALS) {
+        return vec4f(n * 0.5 + 0.5, 1.0);
+    }
+    let v = normalize(g.camera_pos_time.xyz - in.world_pos);
+    let color = shade(material.base_color.rgb, material.params.x, material.params.y,
+                      material.params.z, n, v, in.world_pos, object.flags.y);
+    return vec4f(color, 1.0);
+}

@@ -1,0 +1,94 @@
+// prefilter.wgsl — roughness-blurred environment mips for glossy reflections: each mip m of
+// the environment cube holds the sky convolved with the GGX lobe of roughness m/(M−1), by
+// importance sampling the GGX normal distribution with a Hammersley set and the N = V = R
+// assumption (Karis 2013, "Real Shading in Unreal Engine 4", split-sum approximation).
+
+struct Params {
+    // x roughness, y face, z sample count
+    v: vec4f,
+}
+
+@group(0) @binding(0) var<uniform> params: Params;
+@group(0) @binding(1) var src_cube: texture_cube<f32>;
+@group(0) @binding(2) var src_sampler: sampler;
+
+const PI: f32 = 3.14159265;
+
+struct FullscreenOut {
+    @builtin(position) clip: vec4f,
+    @location(0) ndc: vec2f,
+}
+
+@vertex
+fn vs_fullscreen(@builtin(vertex_index) i: u32) -> FullscreenOut {
+    let uv = vec2f(f32((i << 1u) & 2u), f32(i & 2u));
+    let ndc = uv * 2.0 - 1.0;
+    return FullscreenOut(vec4f(ndc, 1.0, 1.0), ndc);
+}
+
+fn face_dir(face: u32, ndc: vec2f) -> vec3f {
+    let u = ndc.x;
+    let v = -ndc.y;
+    var d = vec3f(-u, -v, -1.0); // face 5: -z
+    if (face == 0u) {
+        d = vec3f(1.0, -v, -u);
+    } else if (face == 1u) {
+        d = vec3f(-1.0, -v, u);
+    } else if (face == 2u) {
+        d = vec3f(u, 1.0, v);
+    } else if (face == 3u) {
+        d = vec3f(u, -1.0, -v);
+    } else if (face == 4u) {
+        d = vec3f(u, -v, 1.0);
+    }
+    return normalize(d);
+}
+
+fn radical_inverse(bits_in: u32) -> f32 {
+    var bits = bits_in;
+    bits = (bits << 16u) | (bits >> 16u);
+    bits = ((bits & 0x55555555u) << 1u) | ((bits & 0xAAAAAAAAu) >> 1u);
+    bits = ((bits & 0x33333333u) << 2u) | ((bits & 0xCCCCCCCCu) >> 2u);
+    bits = ((bits & 0x0F0F0F0Fu) << 4u) | ((bits & 0xF0F0F0F0u) >> 4u);
+    bits = ((bits & 0x00FF00FFu) << 8u) | ((bits & 0xFF00FF00u) >> 8u);
+    return f32(bits) * 2.3283064365386963e-10;
+}
+
+fn importance_sample_ggx(xi: vec2f, alpha: f32, n: vec3f) -> vec3f {
+    let phi = 2.0 * PI * xi.x;
+    let cos_theta = sqrt((1.0 - xi.y) / (1.0 + (alpha * alpha - 1.0) * xi.y));
+    let sin_theta = sqrt(1.0 - cos_theta * cos_theta);
+    let h = vec3f(sin_theta * cos(phi), sin_theta * sin(phi), cos_theta);
+    var up = vec3f(0.0, 0.0, 1.0);
+    if (abs(n.z) > 0.999) {
+        up = vec3f(1.0, 0.0, 0.0);
+    }
+    let tx = normalize(cross(up, n));
+    let ty = cross(n, tx);
+    return normalize(tx * h.x + ty * h.y + n * h.z);
+}
+
+@fragment
+fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
+    let n = face_dir(u32(params.v.y + 0.5), in.ndc);
+    let roughness = params.v.x;
+    if (roughness < 0.01) {
+        return vec4f(textureSampleLevel(src_cube, src_sampler, n, 0.0).rgb, 1.0);
+    }
+    let alpha = roughness * roughness;
+    let count = u32(params.v.z);
+    var sum = vec3f(0.0);
+    var weight = 0.0;
+    for (var i = 0u; i < count; i++) {
+        let xi = vec2f(f32(i) / f32(count), radical_inverse(i));
+        let h = importance_sample_ggx(xi, alpha, n);
+        let l = normalize(2.0 * dot(n, h) * h - n);
+        let n_dot_l = dot(n, l);
+        if (n_dot_l > 0.0) {
+            // clamp the HDR sun so a few samples hitting it do not sparkle
+            sum += min(textureSampleLevel(src_cube, src_sampler, l, 0.0).rgb, vec3f(8.0)) * n_dot_l;
+            weight += n_dot_l;
+        }
+    }
+    return vec4f(sum / max(weight, 1e-4), 1.0);
+}

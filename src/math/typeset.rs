@@ -1,0 +1,271 @@
+//! Formula → pixels with Typst as a library: no TeX install, no browser, no network.
+//!
+//! Fonts come embedded (`typst-assets`: New Computer Modern and its maths companion), so a
+//! formula renders the same on every machine. This module knows nothing of egui: it returns a
+//! premultiplied RGBA buffer that any renderer can upload.
+
+use std::sync::LazyLock;
+
+use typst::diag::{FileError, FileResult, Severity, SourceDiagnostic};
+use typst::foundations::{Bytes, Datetime};
+use typst::syntax::{FileId, Source};
+use typst::text::{Font, FontBook};
+use typst::utils::LazyHash;
+use typst::{Library, LibraryExt, World, WorldExt};
+use typst_layout::PagedDocument;
+
+/// Which syntax a formula is written in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum MathSyntax {
+    /// Typst maths, e.g. `dot(x) = f(x, t)`.
+    Typst,
+    /// LaTeX maths, e.g. `\dot{x} = f(x, t)`, converted to Typst by `mitex`.
+    Latex,
+}
+
+/// A rendered formula: premultiplied RGBA, row-major, `width × height` pixels.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RenderedFormula {
+    pub width: u32,
+    pub height: u32,
+    pub rgba_premultiplied: Vec<u8>,
+}
+
+/// Why a formula did not render. `col` is a 1-based column (in characters) into the formula as
+/// the lecturer wrote it, when Typst could point at the fault.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct MathError {
+    pub message: String,
+    pub col: Option<usize>,
+}
+
+impl std::fmt::Display for MathError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self.col {
+            Some(c) => write!(f, "column {c}: {}", self.message),
+            None => write!(f, "{}", self.message),
+        }
+    }
+}
+
+impl std::error::Error for MathError {}
+
+/// The font size formulas are laid out at; the raster scale turns it into the pixels asked for.
+const LAYOUT_PT: f64 = 10.0;
+
+/// Definitions that the LaTeX converter's output refers to (mitex maps some commands to helper
+/// functions that its own Typst package would define).
+const LATEX_PRELUDE: &str = r#"#let mitexsqrt(..a) = { let p = a.pos(); if p.len() == 1 { math.sqrt(p.at(0)) } else { math.root(p.at(0), p.at(1)) } }
+#let mitexmathbf(it) = math.bold(math.upright(it))
+#let mitexdisplay(it) = math.display(it)
+#let mitexcolor(c, it) = text(fill: rgb(c), it)
+#let mitexoverbrace(it, ..a) = math.overbrace(it, ..a)
+#let mitexunderbrace(it, ..a) = math.underbrace(it, ..a)
+#let mitexarray(..a) = math.mat(delim: none, ..a.pos())
+#let pmatrix(..a) = math.mat(delim: "(", ..a)
+#let bmatrix(..a) = math.mat(delim: "[", ..a)
+#let Bmatrix(..a) = math.mat(delim: "{", ..a)
+#let vmatrix(..a) = math.mat(delim: "|", ..a)
+#let Vmatrix(..a) = math.mat(delim: "‖", ..a)
+#let matrix(..a) = math.mat(delim: none, ..a)
+#let aligned(..a) = math.display(a.pos().join(linebreak()))
+#let textmath(it) = it
+#let textbf(it) = text(weight: "bold", it)
+#let textit(it) = emph(it)
+#let textrm(it) = it
+#let mathrm(it) = math.upright(it)
+#let operatorname(it) = math.op(math.upright(it))
+"#;
+
+struct Fonts {
+    book: LazyHash<FontBook>,
+    fonts: Vec<Font>,
+}
+
+static FONTS: LazyLock<Fonts> = LazyLock::new(|| {
+    let fonts: Vec<Font> = typst_assets::fonts()
+        .flat_map(|data| Font::iter(Bytes::new(data)))
+        .collect();
+    Fonts {
+        book: LazyHash::new(FontBook::from_fonts(&fonts)),
+        fonts,
+    }
+});
+
+static LIBRARY: LazyLock<LazyHash<Library>> = LazyLock::new(|| LazyHash::new(Library::default()));
+
+/// A one-file Typst world: the formula's document, the standard library and embedded fonts.
+struct FormulaWorld {
+    source: Source,
+}
+
+impl World for FormulaWorld {
+    fn library(&self) -> &LazyHash<Library> {
+        &LIBRARY
+    }
+    fn book(&self) -> &LazyHash<FontBook> {
+        &FONTS.book
+    }
+    fn main(&self) -> FileId {
+        self.source.id()
+    }
+    fn source(&self, id: FileId) -> FileResult<Source> {
+        if id == self.source.id() {
+            Ok(self.source.clone())
+        } else {
+            Err(FileError::AccessDenied)
+        }
+    }
+    fn file(&self, _id: FileId) -> FileResult<Bytes> {
+        // Formulas are self-contained: no images, no packages, no network.
+        Err(FileError::AccessDenied)
+    }
+    fn font(&self, index: usize) -> Option<Font> {
+        FONTS.fonts.get(index).cloned()
+    }
+    fn today(&self, _offset: Option<typst::foundations::Duration>) -> Option<Datetime> {
+        None
+    }
+}
+
+/// Converts LaTeX maths to Typst maths (no rendering).
+pub fn latex_to_typst(latex: &str) -> Result<String, MathError> {
+    mitex::convert_math(latex, None).map_err(|e| MathError {
+        message: format!("LaTeX: {}", e.trim_start_matches("error: ")),
+        col: None,
+    })
+}
+
+/// Typesets `src` as display maths, `size_px` pixels per em, in `rgba` (unpremultiplied), on a
+/// transparent background with a small margin.
+pub fn render_formula(
+    src: &str,
+    syntax: MathSyntax,
+    size_px: f32,
+    rgba: [u8; 4],
+) -> Result<RenderedFormula, MathError> {
+    if !(size_px.is_finite() && (1.0..=1000.0).contains(&size_px)) {
+        return Err(MathError {
+            message: format!("formula size {size_px} px is outside 1..=1000"),
+            col: None,
+        });
+    }
+    if src.trim().is_empty() {
+        return Err(MathError {
+            message: "empty formula".into(),
+            col: None,
+        });
+    }
+    let (body, prelude) = match syntax {
+        MathSyntax::Typst => (src.to_owned(), ""),
+        MathSyntax::Latex => (latex_to_typst(src)?, LATEX_PRELUDE),
+    };
+    let [r, g, b, a] = rgba;
+    let header = format!(
+        "{prelude}#set page(width: auto, height: auto, margin: 0.15em, fill: none)\n\
+         #set text(size: {LAYOUT_PT}pt, fill: rgb({r}, {g}, {b}, {a}))\n$ "
+    );
+    let text = format!("{header}{body} $\n");
+    let world = FormulaWorld {
+        source: Source::detached(text),
+    };
+    let doc = typst::compile::<PagedDocument>(&world)
+        .output
+        .map_err(|errs| first_error(&world, &errs, header.len(), &body, syntax))?;
+    let page = doc.pages().first().ok_or_else(|| MathError {
+        message: "formula produced no output".into(),
+        col: None,
+    })?;
+    let opts = typst_render::RenderOptions {
+        pixel_per_pt: (size_px as f64 / LAYOUT_PT).into(),
+        render_bleed: false,
+    };
+    let pixmap = typst_render::render(page, &opts);
+    Ok(RenderedFormula {
+        width: pixmap.width(),
+        height: pixmap.height(),
+        rgba_premultiplied: pixmap.data().to_vec(),
+    })
+}
+
+fn first_error(
+    world: &FormulaWorld,
+    errs: &[SourceDiagnostic],
+    body_start: usize,
+    body: &str,
+    syntax: MathSyntax,
+) -> MathError {
+    let diag = errs
+        .iter()
+        .find(|d| d.severity == Severity::Error)
+        .or(errs.first());
+    let Some(diag) = diag else {
+        return MathError {
+            message: "unknown Typst error".into(),
+            col: None,
+        };
+    };
+    // Columns only make sense against what the lecturer typed, i.e. for Typst input.
+    let col = match syntax {
+        MathSyntax::Typst => world
+            .range(diag.span)
+            .filter(|r| r.start >= body_start && r.start <= body_start + body.len())
+            .map(|r| body[..r.start - body_start].chars().count() + 1),
+        MathSyntax::Latex => None,
+    };
+    let mut message = diag.message.to_string();
+    for hint in &diag.hints {
+        message.push_str("; hint: ");
+        message.push_str(&hint.v);
+    }
+    MathError { message, col }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn renders_a_fraction_with_ink() {
+        let f = render_formula(
+            "x(t+h) = x + h/2 dot(x)",
+            MathSyntax::Typst,
+            40.0,
+            [0, 0, 0, 255],
+        )
+        .unwrap();
+        assert!(
+            f.width > f.height && f.height > 20,
+            "{}x{}",
+            f.width,
+            f.height
+        );
+        assert_eq!(
+            f.rgba_premultiplied.len(),
+            (f.width * f.height * 4) as usize
+        );
+        let inked = f
+            .rgba_premultiplied
+            .chunks(4)
+            .filter(|p| p[3] > 128)
+            .count();
+        assert!(inked > 100, "only {inked} opaque pixels");
+    }
+
+    #[test]
+    fn bad_typst_reports_the_column() {
+        let err = render_formula("x = frac(1, ", MathSyntax::Typst, 30.0, [0; 4]).unwrap_err();
+        assert!(err.col.is_some(), "{err}");
+    }
+
+    #[test]
+    fn latex_input_renders() {
+        let f = render_formula(
+            r"\dot{x} = \frac{1}{2} \omega q",
+            MathSyntax::Latex,
+            30.0,
+            [0, 0, 0, 255],
+        );
+        assert!(f.is_ok(), "{f:?}");
+    }
+}

@@ -1,0 +1,179 @@
+//! Convergence and work-precision studies: pure functions over a system, so a slide can run
+//! them on a background thread and `lectern bench` can print them.
+
+use std::time::Instant;
+
+use super::solve::{Adaptive, Scheme, solve_adaptive, solve_fixed_final};
+use super::{Method, System};
+
+/// Max-norm distance between two states (∞ when either is not finite).
+pub fn max_error(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, |m, e| {
+            if e.is_nan() || m.is_nan() {
+                f64::INFINITY
+            } else {
+                m.max(e)
+            }
+        })
+}
+
+/// Final-time errors as h shrinks, with the least-squares slope of log(err) over log(h):
+/// the measured order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Convergence {
+    /// (h, error at t_end)
+    pub points: Vec<(f64, f64)>,
+    pub slope: f64,
+}
+
+/// The least-squares slope of log y over log x.
+pub fn loglog_slope(points: &[(f64, f64)]) -> f64 {
+    let pts: Vec<(f64, f64)> = points
+        .iter()
+        .filter(|(x, y)| *x > 0.0 && *y > 0.0 && y.is_finite())
+        .map(|(x, y)| (x.ln(), y.ln()))
+        .collect();
+    let n = pts.len() as f64;
+    if pts.len() < 2 {
+        return f64::NAN;
+    }
+    let mx = pts.iter().map(|p| p.0).sum::<f64>() / n;
+    let my = pts.iter().map(|p| p.1).sum::<f64>() / n;
+    let sxy: f64 = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+    let sxx: f64 = pts.iter().map(|p| (p.0 - mx).powi(2)).sum();
+    sxy / sxx
+}
+
+/// Runs `scheme` with each h from t0 to t_end and compares the final state with `exact_end`.
+pub fn convergence<S: System + ?Sized>(
+    sys: &S,
+    scheme: Scheme<'_>,
+    t0: f64,
+    x0: &[f64],
+    t_end: f64,
+    exact_end: &[f64],
+    hs: &[f64],
+) -> Convergence {
+    let points: Vec<(f64, f64)> = hs
+        .iter()
+        .map(|&h| {
+            let sol = solve_fixed_final(sys, scheme, t0, x0, h, t_end, f64::INFINITY);
+            let err = if sol.finished() {
+                max_error(sol.last().1, exact_end)
+            } else {
+                f64::INFINITY
+            };
+            (h, err)
+        })
+        .collect();
+    let slope = loglog_slope(&points);
+    Convergence { points, slope }
+}
+
+/// A very accurate final state (Dormand–Prince at rtol 1e-13) for problems without an
+/// exact solution.
+pub fn reference<S: System + ?Sized>(sys: &S, t0: f64, x0: &[f64], t_end: f64) -> Vec<f64> {
+    let opts = Adaptive {
+        rtol: 1e-13,
+        atol: 1e-15,
+        record: false,
+        ..Adaptive::default()
+    };
+    solve_adaptive(sys, t0, x0, t_end, opts).last().1.to_vec()
+}
+
+/// One run of a work-precision diagram.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Point {
+    pub method: String,
+    /// the step h, or the tolerance (rtol = atol) of adaptive runs
+    pub h_or_tol: f64,
+    pub error: f64,
+    pub f_evals: u64,
+    /// minimum wall time over the repeats
+    pub secs: f64,
+}
+
+/// What to sweep: fixed-step methods over `hs`, Dormand–Prince over `tols`.
+#[derive(Debug, Clone)]
+pub struct Sweep {
+    pub methods: Vec<Method>,
+    pub hs: Vec<f64>,
+    pub tols: Vec<f64>,
+    /// timing repeats per point (the minimum is kept)
+    pub repeats: usize,
+}
+
+/// Error at t_end against `exact_end` vs f-evaluations and wall time, for every method and
+/// step (or tolerance) of the sweep. Diverged runs are reported with an infinite error.
+pub fn work_precision<S: System + ?Sized>(
+    sys: &S,
+    t0: f64,
+    x0: &[f64],
+    t_end: f64,
+    exact_end: &[f64],
+    sweep: &Sweep,
+) -> Vec<Point> {
+    let mut out = Vec::new();
+    for &m in &sweep.methods {
+        let params: &[f64] = if m.is_adaptive() {
+            &sweep.tols
+        } else {
+            &sweep.hs
+        };
+        for &p in params {
+            let run = || {
+                if m.is_adaptive() {
+                    let opts = Adaptive {
+                        rtol: p,
+                        atol: p,
+                        record: false,
+                        ..Adaptive::default()
+                    };
+                    solve_adaptive(sys, t0, x0, t_end, opts)
+                } else {
+                    solve_fixed_final(sys, Scheme::Method(m), t0, x0, p, t_end, f64::INFINITY)
+                }
+            };
+            let mut best = f64::INFINITY;
+            let mut sol = None;
+            for _ in 0..sweep.repeats.max(1) {
+                let start = Instant::now();
+                let s = run();
+                best = best.min(start.elapsed().as_secs_f64());
+                sol = Some(s);
+            }
+            let sol = sol.expect("at least one repeat");
+            let error = if sol.finished() {
+                max_error(sol.last().1, exact_end)
+            } else {
+                f64::INFINITY
+            };
+            out.push(Point {
+                method: m.name().to_string(),
+                h_or_tol: p,
+                error,
+                f_evals: sol.f_evals,
+                secs: best,
+            });
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn slope_of_a_power_law() {
+        let pts: Vec<(f64, f64)> = [0.1, 0.05, 0.025]
+            .iter()
+            .map(|&h: &f64| (h, 3.0 * h.powi(4)))
+            .collect();
+        assert!((loglog_slope(&pts) - 4.0).abs() < 1e-12);
+    }
+}

@@ -1,0 +1,398 @@
+//! Meshes as vertex + index buffers with an explicit vertex layout (the "VAO" of the lecture):
+//! position, normal, tangent (xyz + handedness w), uv. Generated in code: terrain, rocks,
+//! boxes, spheres, capsules and the fish body.
+
+use bytemuck::{Pod, Zeroable};
+use glam::{Vec2, Vec3};
+use wgpu::util::DeviceExt;
+
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Pod, Zeroable)]
+pub struct Vertex {
+    pub position: [f32; 3],
+    pub normal: [f32; 3],
+    pub tangent: [f32; 4],
+    pub uv: [f32; 2],
+}
+
+impl Vertex {
+    pub const ATTRIBUTES: [wgpu::VertexAttribute; 4] = wgpu::vertex_attr_array![
+        0 => Float32x3, 1 => Float32x3, 2 => Float32x4, 3 => Float32x2
+    ];
+
+    pub fn layout() -> wgpu::VertexBufferLayout<'static> {
+        wgpu::VertexBufferLayout {
+            array_stride: std::mem::size_of::<Vertex>() as u64,
+            step_mode: wgpu::VertexStepMode::Vertex,
+            attributes: &Self::ATTRIBUTES,
+        }
+    }
+}
+
+/// CPU mesh data.
+#[derive(Debug, Clone, Default)]
+pub struct MeshData {
+    pub positions: Vec<Vec3>,
+    pub normals: Vec<Vec3>,
+    pub uvs: Vec<Vec2>,
+    pub indices: Vec<u32>,
+}
+
+impl MeshData {
+    /// Smooth normals from area-weighted face normals (when the generator gave none).
+    pub fn compute_normals(&mut self) {
+        let mut n = vec![Vec3::ZERO; self.positions.len()];
+        for t in self.indices.chunks_exact(3) {
+            let [a, b, c] = [t[0] as usize, t[1] as usize, t[2] as usize];
+            let f = (self.positions[b] - self.positions[a])
+                .cross(self.positions[c] - self.positions[a]);
+            n[a] += f;
+            n[b] += f;
+            n[c] += f;
+        }
+        self.normals = n.into_iter().map(|v| v.normalize_or(Vec3::Y)).collect();
+    }
+
+    /// Per-vertex tangents from uv derivatives (Lengyel 2001), Gram–Schmidt orthogonalised,
+    /// with the bitangent's handedness in w.
+    pub fn vertices(&self) -> Vec<Vertex> {
+        let count = self.positions.len();
+        let mut tan = vec![Vec3::ZERO; count];
+        let mut bit = vec![Vec3::ZERO; count];
+        for t in self.indices.chunks_exact(3) {
+            let [a, b, c] = [t[0] as usize, t[1] as usize, t[2] as usize];
+            let (e1, e2) = (
+                self.positions[b] - self.positions[a],
+                self.positions[c] - self.positions[a],
+            );
+            let (d1, d2) = (self.uvs[b] - self.uvs[a], self.uvs[c] - self.uvs[a]);
+            let det = d1.x * d2.y - d2.x * d1.y;
+            if det.abs() < 1e-12 {
+                continue;
+            }
+            let r = 1.0 / det;
+            let sdir = (e1 * d2.y - e2 * d1.y) * r;
+            let tdir = (e2 * d1.x - e1 * d2.x) * r;
+            for i in [a, b, c] {
+                tan[i] += sdir;
+                bit[i] += tdir;
+            }
+        }
+        (0..count)
+            .map(|i| {
+                let n = self.normals[i];
+                let mut t = tan[i] - n * n.dot(tan[i]);
+                if t.length_squared() < 1e-12 {
+                    t = n.any_orthonormal_vector();
+                }
+                let t = t.normalize();
+                let w = if n.cross(t).dot(bit[i]) < 0.0 {
+                    -1.0
+                } else {
+                    1.0
+                };
+                Vertex {
+                    position: self.positions[i].to_array(),
+                    normal: n.to_array(),
+                    tangent: [t.x, t.y, t.z, w],
+                    uv: self.uvs[i].to_array(),
+                }
+            })
+            .collect()
+    }
+}
+
+/// A mesh on the GPU.
+pub struct GpuMesh {
+    pub vertex_buffer: wgpu::Buffer,
+    pub index_buffer: wgpu::Buffer,
+    pub index_count: u32,
+}
+
+impl GpuMesh {
+    pub fn upload(device: &wgpu::Device, label: &str, mesh: &MeshData) -> Self {
+        let vertices = mesh.vertices();
+        Self {
+            vertex_buffer: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents: bytemuck::cast_slice(&vertices),
+                usage: wgpu::BufferUsages::VERTEX,
+            }),
+            index_buffer: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents: bytemuck::cast_slice(&mesh.indices),
+                usage: wgpu::BufferUsages::INDEX,
+            }),
+            index_count: mesh.indices.len() as u32,
+        }
+    }
+
+    pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>, instances: u32) {
+        pass.set_vertex_buffer(0, self.vertex_buffer.slice(..));
+        pass.set_index_buffer(self.index_buffer.slice(..), wgpu::IndexFormat::Uint32);
+        pass.draw_indexed(0..self.index_count, 0, 0..instances);
+    }
+}
+
+/// Indices of a (cols+1)×(rows+1) vertex grid, counter-clockwise seen from +normal when u runs
+/// along +x and v along −z (or, for surfaces, with the generator's orientation).
+fn grid_indices(cols: u32, rows: u32, flip: bool) -> Vec<u32> {
+    let mut idx = Vec::with_capacity((cols * rows * 6) as usize);
+    for r in 0..rows {
+        for c in 0..cols {
+            let i0 = r * (cols + 1) + c;
+            let i1 = i0 + 1;
+            let i2 = i0 + cols + 1;
+            let i3 = i2 + 1;
+            if flip {
+                idx.extend_from_slice(&[i0, i1, i2, i1, i3, i2]);
+            } else {
+                idx.extend_from_slice(&[i0, i2, i1, i1, i2, i3]);
+            }
+        }
+    }
+    idx
+}
+
+/// Seabed dunes: height above the floor level at (x, z), metres per unit `relief`.
+pub fn dunes(x: f32, z: f32) -> f32 {
+    0.5 * (0.23 * x + 0.4 * (0.11 * z).sin()).sin()
+        + 0.3 * (0.37 * z - 0.21 * x).sin()
+        + 0.15 * (0.9 * x + 0.7 * z).sin() * (0.5 * z).cos()
+}
+
+/// A square height field centred on the origin; y = floor + relief · dunes, rising towards
+/// the edges so the lagoon's floor meets the horizon less abruptly.
+pub fn terrain(size: f32, resolution: u32, floor_y: f32, relief: f32) -> MeshData {
+    let n = resolution.max(2);
+    let mut m = MeshData::default();
+    let h = |x: f32, z: f32| {
+        let r = (x * x + z * z).sqrt() / (0.5 * size);
+        floor_y + relief * dunes(x, z) + 1.5 * (r - 0.35).max(0.0).powi(2)
+    };
+    for j in 0..=n {
+        for i in 0..=n {
+            let x = (i as f32 / n as f32 - 0.5) * size;
+            let z = (j as f32 / n as f32 - 0.5) * size;
+            m.positions.push(Vec3::new(x, h(x, z), z));
+            let e = 0.05;
+            let dx = (h(x + e, z) - h(x - e, z)) / (2.0 * e);
+            let dz = (h(x, z + e) - h(x, z - e)) / (2.0 * e);
+            m.normals.push(Vec3::new(-dx, 1.0, -dz).normalize());
+            m.uvs.push(Vec2::new(x, z));
+        }
+    }
+    m.indices = grid_indices(n, n, false);
+    m
+}
+
+/// A UV sphere, optionally split into a capsule by `half_length` along x.
+pub fn capsule(radius: f32, half_length: f32, rings: u32, segments: u32) -> MeshData {
+    let rings = rings.max(2) & !1; // even, so the equator ring exists and can be doubled
+    let mut m = MeshData::default();
+    for k in 0..=rings + 1 {
+        // the equator appears twice: once on each hemisphere, joined by the cylinder
+        let (r, shift) = if k <= rings / 2 {
+            (k, half_length)
+        } else {
+            (k - 1, -half_length)
+        };
+        let theta = std::f32::consts::PI * r as f32 / rings as f32; // from the +x pole
+        let (st, ct) = theta.sin_cos();
+        for s in 0..=segments {
+            let phi = std::f32::consts::TAU * s as f32 / segments as f32;
+            let n = Vec3::new(ct, st * phi.cos(), st * phi.sin());
+            m.positions.push(n * radius + Vec3::X * shift);
+            m.normals.push(n);
+            m.uvs.push(Vec2::new(
+                s as f32 / segments as f32 * 2.0,
+                k as f32 / (rings + 1) as f32,
+            ));
+        }
+    }
+    m.indices = grid_indices(segments, rings + 1, false);
+    m
+}
+
+/// An axis-aligned box centred on the origin, flat-shaded (4 vertices per face).
+pub fn cuboid(size: Vec3) -> MeshData {
+    let h = size * 0.5;
+    let mut m = MeshData::default();
+    // (normal, u axis, v axis)
+    let faces = [
+        (Vec3::X, Vec3::NEG_Z, Vec3::Y),
+        (Vec3::NEG_X, Vec3::Z, Vec3::Y),
+        (Vec3::Y, Vec3::X, Vec3::NEG_Z),
+        (Vec3::NEG_Y, Vec3::X, Vec3::Z),
+        (Vec3::Z, Vec3::X, Vec3::Y),
+        (Vec3::NEG_Z, Vec3::NEG_X, Vec3::Y),
+    ];
+    for (n, u, v) in faces {
+        let base = m.positions.len() as u32;
+        for (a, b) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
+            let p = n * h + u * a * h + v * b * h;
+            let p = Vec3::new(
+                p.x.clamp(-h.x, h.x),
+                p.y.clamp(-h.y, h.y),
+                p.z.clamp(-h.z, h.z),
+            );
+            m.positions.push(p);
+            m.normals.push(n);
+            let ext = Vec2::new(
+                (u * size).abs().max_element(),
+                (v * size).abs().max_element(),
+            );
+            m.uvs
+                .push(Vec2::new((a + 1.0) * 0.5 * ext.x, (b + 1.0) * 0.5 * ext.y));
+        }
+        m.indices
+            .extend_from_slice(&[base, base + 1, base + 2, base, base + 2, base + 3]);
+    }
+    m
+}
+
+fn hash01(i: u32, seed: u32) -> f32 {
+    let mut x = i.wrapping_mul(0x2c1b_3c6d) ^ seed.wrapping_mul(0x297a_2d39);
+    x ^= x >> 12;
+    x = x.wrapping_mul(0x9E37_79B9);
+    x ^= x >> 15;
+    (x & 0xFFFF) as f32 / 65535.0
+}
+
+/// A boulder: a sphere pushed in and out by a few seeded lumps, flattened where it rests.
+pub fn rock(radius: f32, seed: u32) -> MeshData {
+    let mut m = capsule(1.0, 0.0, 24, 32);
+    let lumps: Vec<(Vec3, f32)> = (0..7)
+        .map(|i| {
+            let d = Vec3::new(
+                hash01(i, seed) * 2.0 - 1.0,
+                hash01(i + 50, seed) * 2.0 - 1.0,
+                hash01(i + 99, seed) * 2.0 - 1.0,
+            );
+            (d.normalize_or(Vec3::X), 0.25 * (hash01(i + 7, seed) - 0.4))
+        })
+        .collect();
+    for p in &mut m.positions {
+        let d = p.normalize();
+        let mut r = 1.0;
+        for (c, a) in &lumps {
+            r += a * d.dot(*c).max(0.0).powi(3);
+        }
+        let mut q = d * r * radius;
+        q.y = q.y.max(-0.25 * radius) * 0.8; // squat, and flat at the bottom
+        *p = q;
+    }
+    m.compute_normals();
+    m
+}
+
+/// The fish body: an elliptic cross-section lofted along x (nose +0.5, tail −0.5), laterally
+/// compressed, plus a forked tail fin. Unit length; the instance scale sizes it.
+pub fn fish() -> MeshData {
+    let rings = 20;
+    let segments = 16;
+    let mut m = MeshData::default();
+    for r in 0..=rings {
+        let s = r as f32 / rings as f32; // 0 nose … 1 tail root
+        let x = 0.5 - 0.85 * s;
+        // thickness profile: blunt nose, thickest at a third, thin caudal peduncle
+        let t = (s.max(1e-3)).powf(0.45) * (1.0 - s).powf(0.9) * 1.25;
+        let (ry, rz) = (0.16 * t + 0.006, 0.065 * t + 0.004);
+        for k in 0..=segments {
+            let phi = std::f32::consts::TAU * k as f32 / segments as f32;
+            let (sp, cp) = phi.sin_cos();
+            m.positions.push(Vec3::new(x, ry * cp, rz * sp));
+            m.uvs.push(Vec2::new(s * 3.0, cp * 0.5 + 0.5));
+        }
+    }
+    m.indices = grid_indices(segments, rings, false);
+    // tail fin: two mirrored fans (one per side), from the peduncle to a forked edge
+    let root = Vec3::new(-0.35, 0.0, 0.0);
+    let fin = [
+        Vec3::new(-0.55, 0.14, 0.0),
+        Vec3::new(-0.47, 0.0, 0.0),
+        Vec3::new(-0.55, -0.14, 0.0),
+    ];
+    for side in [1.0f32, -1.0] {
+        let base = m.positions.len() as u32;
+        for p in std::iter::once(root).chain(fin) {
+            m.positions.push(p + Vec3::Z * 0.002 * side);
+            m.uvs
+                .push(Vec2::new(3.0 + (root.x - p.x) * 4.0, p.y * 2.0 + 0.5));
+        }
+        if side > 0.0 {
+            m.indices
+                .extend_from_slice(&[base, base + 1, base + 2, base, base + 2, base + 3]);
+        } else {
+            m.indices
+                .extend_from_slice(&[base, base + 2, base + 1, base, base + 3, base + 2]);
+        }
+    }
+    m.compute_normals();
+    m
+}
+
+/// The water grid: only rest (x, z) positions; the vertex shader displaces them.
+pub fn water_grid(size: f32, resolution: u32) -> (Vec<[f32; 2]>, Vec<u32>) {
+    let n = resolution.max(2);
+    let mut v = Vec::with_capacity(((n + 1) * (n + 1)) as usize);
+    for j in 0..=n {
+        for i in 0..=n {
+            // denser near the centre, where the camera looks
+            let f = |t: f32| {
+                let c = t * 2.0 - 1.0;
+                c * c.abs() * 0.6 + c * 0.4
+            };
+            v.push([
+                f(i as f32 / n as f32) * size * 0.5,
+                f(j as f32 / n as f32) * size * 0.5,
+            ]);
+        }
+    }
+    (v, grid_indices(n, n, false))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn outward(m: &MeshData, centre: Vec3) -> f32 {
+        let mut ok = 0;
+        for t in m.indices.chunks_exact(3) {
+            let [a, b, c] = [t[0], t[1], t[2]].map(|i| m.positions[i as usize]);
+            let n = (b - a).cross(c - a);
+            if n.dot((a + b + c) / 3.0 - centre) > 0.0 {
+                ok += 1;
+            }
+        }
+        ok as f32 / (m.indices.len() / 3) as f32
+    }
+
+    #[test]
+    fn closed_meshes_wind_counter_clockwise_outwards() {
+        assert_eq!(outward(&cuboid(Vec3::new(1.0, 2.0, 3.0)), Vec3::ZERO), 1.0);
+        assert!(outward(&capsule(1.0, 0.5, 12, 16), Vec3::ZERO) > 0.99);
+        let f = fish();
+        let body = MeshData {
+            indices: f.indices[..20 * 16 * 6].to_vec(),
+            ..f.clone()
+        };
+        assert!(outward(&body, Vec3::new(0.0, 0.0, 0.0)) > 0.9);
+    }
+
+    #[test]
+    fn terrain_faces_up_and_tangents_follow_u() {
+        let t = terrain(10.0, 8, -3.0, 0.5);
+        for tri in t.indices.chunks_exact(3) {
+            let [a, b, c] = [tri[0], tri[1], tri[2]].map(|i| t.positions[i as usize]);
+            assert!((b - a).cross(c - a).y > 0.0);
+        }
+        let v = t.vertices();
+        // u = world x, so the tangent points along +x; v = world z, so the bitangent is +z
+        let mid = &v[v.len() / 2];
+        assert!(mid.tangent[0] > 0.9);
+        let n = Vec3::from(mid.normal);
+        let b = n.cross(Vec3::new(mid.tangent[0], mid.tangent[1], mid.tangent[2])) * mid.tangent[3];
+        assert!(b.z > 0.9, "{b}");
+    }
+}

@@ -1,0 +1,303 @@
+//! The scene's GPU resources: materials (uniform + normal map), objects (mesh + transform
+//! uniform), the fish mesh with its per-instance buffer, and the water grid.
+
+use std::collections::HashMap;
+
+use bytemuck::{Pod, Zeroable};
+use glam::{Mat4, Quat, Vec3};
+use wgpu::util::DeviceExt;
+
+use crate::scene::{FrameSnapshot, Material, NormalPattern, Object, Scene, Shape};
+
+use super::mesh::{self, GpuMesh};
+use super::normal_map;
+use super::pipelines::{FishInstanceGpu, Layouts};
+
+#[repr(C)]
+#[derive(Clone, Copy, Pod, Zeroable)]
+pub struct MaterialGpu {
+    base_color: [f32; 4],
+    params: [f32; 4],
+    uv: [f32; 4],
+}
+
+impl MaterialGpu {
+    pub fn from(m: &Material) -> Self {
+        Self {
+            base_color: [m.base_color[0], m.base_color[1], m.base_color[2], 1.0],
+            params: [m.metallic, m.roughness, m.reflectance, m.normal_strength],
+            uv: [m.uv_scale, 0.0, 0.0, 0.0],
+        }
+    }
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Pod, Zeroable)]
+struct ObjectGpu {
+    world_from_object: [[f32; 4]; 4],
+    flags: [f32; 4],
+}
+
+pub struct MaterialRes {
+    pub uniform: wgpu::Buffer,
+    pub bind_group: wgpu::BindGroup,
+}
+
+pub struct ObjectRes {
+    pub mesh: GpuMesh,
+    pub material: usize,
+    pub uniform: wgpu::Buffer,
+    pub bind_group: wgpu::BindGroup,
+    /// index into `Scene::objects`
+    pub object_index: usize,
+    pub floating: bool,
+    pub casts_shadow: bool,
+    world_from_object: Mat4,
+    world_uv: bool,
+}
+
+pub struct SceneResources {
+    pub materials: Vec<MaterialRes>,
+    pub objects: Vec<ObjectRes>,
+    pub fish_mesh: GpuMesh,
+    pub fish_material: usize,
+    pub fish_instances: wgpu::Buffer,
+    pub fish_capacity: usize,
+    pub fish_count: u32,
+    pub water_vertices: wgpu::Buffer,
+    pub water_indices: wgpu::Buffer,
+    pub water_index_count: u32,
+}
+
+fn normal_texture(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    pattern: NormalPattern,
+) -> wgpu::TextureView {
+    let size = wgpu::Extent3d {
+        width: normal_map::SIZE,
+        height: normal_map::SIZE,
+        depth_or_array_layers: 1,
+    };
+    let texture = device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("normal map"),
+        size,
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        // linear: these texels are vectors
+        format: wgpu::TextureFormat::Rgba8Unorm,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    });
+    queue.write_texture(
+        texture.as_image_copy(),
+        &normal_map::generate(pattern),
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(4 * normal_map::SIZE),
+            rows_per_image: None,
+        },
+        size,
+    );
+    texture.create_view(&Default::default())
+}
+
+fn object_mesh(o: &Object) -> (mesh::MeshData, Mat4, bool) {
+    match o {
+        Object::Seabed {
+            size,
+            depth,
+            resolution,
+            relief,
+            ..
+        } => (
+            mesh::terrain(*size, *resolution, -depth, *relief),
+            Mat4::IDENTITY,
+            true,
+        ),
+        Object::Rock {
+            position,
+            radius,
+            seed,
+            ..
+        } => (
+            mesh::rock(*radius, *seed),
+            Mat4::from_translation(Vec3::from(*position)),
+            false,
+        ),
+        Object::Floating { shape, .. } => {
+            let m = match shape {
+                Shape::Box { size } => mesh::cuboid(Vec3::from(*size)),
+                Shape::Sphere { radius } => mesh::capsule(*radius, 0.0, 16, 24),
+                Shape::Capsule { radius, length } => mesh::capsule(*radius, 0.5 * length, 16, 24),
+            };
+            (m, Mat4::IDENTITY, false)
+        }
+    }
+}
+
+impl SceneResources {
+    pub fn new(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        layouts: &Layouts,
+        scene: &Scene,
+        repeat: &wgpu::Sampler,
+    ) -> Self {
+        let mut maps: HashMap<NormalPattern, wgpu::TextureView> = HashMap::new();
+        let materials = scene
+            .materials
+            .iter()
+            .map(|m| {
+                let view = maps
+                    .entry(m.normal_map)
+                    .or_insert_with(|| normal_texture(device, queue, m.normal_map))
+                    .clone();
+                let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some(&m.name),
+                    contents: bytemuck::bytes_of(&MaterialGpu::from(m)),
+                    usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                });
+                let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some(&m.name),
+                    layout: &layouts.material,
+                    entries: &[
+                        wgpu::BindGroupEntry {
+                            binding: 0,
+                            resource: uniform.as_entire_binding(),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 1,
+                            resource: wgpu::BindingResource::TextureView(&view),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 2,
+                            resource: wgpu::BindingResource::Sampler(repeat),
+                        },
+                    ],
+                });
+                MaterialRes {
+                    uniform,
+                    bind_group,
+                }
+            })
+            .collect();
+        let objects = scene
+            .objects
+            .iter()
+            .enumerate()
+            .map(|(i, o)| {
+                let (data, world_from_object, world_uv) = object_mesh(o);
+                let uniform = device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("object"),
+                    size: std::mem::size_of::<ObjectGpu>() as u64,
+                    usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                });
+                let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("object"),
+                    layout: &layouts.object,
+                    entries: &[wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: uniform.as_entire_binding(),
+                    }],
+                });
+                ObjectRes {
+                    mesh: GpuMesh::upload(device, "object", &data),
+                    material: scene.material_index(o.material()).unwrap_or(0),
+                    uniform,
+                    bind_group,
+                    object_index: i,
+                    floating: matches!(o, Object::Floating { .. }),
+                    casts_shadow: !matches!(o, Object::Seabed { .. }),
+                    world_from_object,
+                    world_uv,
+                }
+            })
+            .collect();
+        let fish_material = scene
+            .material_index("fish_skin")
+            .unwrap_or(scene.materials.len() - 1);
+        let (grid, indices) = mesh::water_grid(scene.water.size, scene.water.resolution);
+        let fish_capacity = scene.school.count.max(1);
+        Self {
+            materials,
+            objects,
+            fish_mesh: GpuMesh::upload(device, "fish", &mesh::fish()),
+            fish_material,
+            fish_instances: Self::fish_buffer(device, fish_capacity),
+            fish_capacity,
+            fish_count: 0,
+            water_vertices: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("water grid"),
+                contents: bytemuck::cast_slice(&grid),
+                usage: wgpu::BufferUsages::VERTEX,
+            }),
+            water_indices: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("water grid"),
+                contents: bytemuck::cast_slice(&indices),
+                usage: wgpu::BufferUsages::INDEX,
+            }),
+            water_index_count: indices.len() as u32,
+        }
+    }
+
+    fn fish_buffer(device: &wgpu::Device, capacity: usize) -> wgpu::Buffer {
+        device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("fish instances"),
+            size: (capacity * std::mem::size_of::<FishInstanceGpu>()) as u64,
+            usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        })
+    }
+
+    /// Uploads this frame's materials (sliders edit them live), transforms and fish.
+    pub fn update(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        scene: &Scene,
+        snap: &FrameSnapshot,
+    ) {
+        for (res, m) in self.materials.iter().zip(&scene.materials) {
+            queue.write_buffer(&res.uniform, 0, bytemuck::bytes_of(&MaterialGpu::from(m)));
+        }
+        for o in &mut self.objects {
+            if o.floating
+                && let Some(pose) = snap
+                    .bodies
+                    .iter()
+                    .find(|b| b.object_index == o.object_index)
+            {
+                o.world_from_object =
+                    Mat4::from_rotation_translation(pose.orientation, pose.position);
+            }
+            let data = ObjectGpu {
+                world_from_object: o.world_from_object.to_cols_array_2d(),
+                flags: [if o.world_uv { 1.0 } else { 0.0 }, 1.0, 0.0, 0.0],
+            };
+            queue.write_buffer(&o.uniform, 0, bytemuck::bytes_of(&data));
+        }
+        if snap.fish.len() > self.fish_capacity {
+            self.fish_capacity = snap.fish.len().next_power_of_two();
+            self.fish_instances = Self::fish_buffer(device, self.fish_capacity);
+        }
+        let instances: Vec<FishInstanceGpu> = snap
+            .fish
+            .iter()
+            .map(|f| {
+                let q: Quat = f.orientation.normalize();
+                FishInstanceGpu {
+                    position_scale: [f.position.x, f.position.y, f.position.z, f.scale],
+                    rotation: q.to_array(),
+                    tail_phase: f.tail_phase,
+                }
+            })
+            .collect();
+        if !instances.is_empty() {
+            queue.write_buffer(&self.fish_instances, 0, bytemuck::cast_slice(&instances));
+        }
+        self.fish_count = instances.len() as u32;
+    }
+}

@@ -1,0 +1,326 @@
+//! Reading a scene file: RON parse errors keep their `line:col`; range checks name the field and
+//! the bad value, and point at the field's first occurrence in the text when it can be found.
+
+use std::path::Path;
+
+use crate::diag::Diagnostic;
+
+use super::model::{MAX_FISH, MAX_OBJECTS, MAX_WAVES, Object, Scene, Shape};
+
+/// Parses and validates scene text; `file` only names the source in diagnostics.
+pub fn parse_scene(text: &str, file: &Path) -> Result<Scene, Diagnostic> {
+    let scene: Scene = ron::from_str(text).map_err(|e| Diagnostic::from_ron(file, &e))?;
+    validate(&scene).map_err(|(field, msg)| {
+        let (line, col) = locate(text, field);
+        Diagnostic::new(file, line, col, msg)
+    })?;
+    Ok(scene)
+}
+
+/// Reads, parses and validates a scene file.
+pub fn load_scene(path: &Path) -> Result<Scene, Diagnostic> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| Diagnostic::whole_file(path, format!("cannot read scene: {e}")))?;
+    parse_scene(&text, path)
+}
+
+/// For `lectern check`: every problem of one scene file (at most one: parsing stops at the first).
+pub fn check_file(path: &Path) -> Vec<Diagnostic> {
+    load_scene(path).err().into_iter().collect()
+}
+
+/// 1-based position of the first `field:` in the text, or (0, 0).
+fn locate(text: &str, field: &str) -> (usize, usize) {
+    let needle = format!("{field}:");
+    for (i, line) in text.lines().enumerate() {
+        if let Some(c) = line.find(&needle) {
+            // skip comments
+            if line[..c].contains("//") {
+                continue;
+            }
+            return (i + 1, c + 1);
+        }
+    }
+    (0, 0)
+}
+
+type Invalid = (&'static str, String);
+
+fn check(ok: bool, field: &'static str, msg: impl FnOnce() -> String) -> Result<(), Invalid> {
+    if ok { Ok(()) } else { Err((field, msg())) }
+}
+
+fn finite(v: &[f32]) -> bool {
+    v.iter().all(|x| x.is_finite())
+}
+
+fn in_range(v: f32, lo: f32, hi: f32) -> bool {
+    v.is_finite() && v >= lo && v <= hi
+}
+
+/// Range checks; returns the field name to locate and the message.
+fn validate(s: &Scene) -> Result<(), Invalid> {
+    let c = &s.camera;
+    check(
+        finite(&c.target) && in_range(c.distance, 0.1, 1e4),
+        "distance",
+        || format!("camera.distance = {} must be in 0.1..=10000 m", c.distance),
+    )?;
+    check(in_range(c.fov_deg, 5.0, 150.0), "fov_deg", || {
+        format!("camera.fov_deg = {} must be in 5..=150 degrees", c.fov_deg)
+    })?;
+    check(in_range(c.pitch_deg, -89.0, 89.0), "pitch_deg", || {
+        format!(
+            "camera.pitch_deg = {} must be in -89..=89 degrees",
+            c.pitch_deg
+        )
+    })?;
+    check(c.yaw_deg.is_finite(), "yaw_deg", || {
+        "camera.yaw_deg must be finite".into()
+    })?;
+
+    let d = s.sun.direction;
+    check(
+        finite(&d) && d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > 1e-8 && d[1] > 0.0,
+        "direction",
+        || format!("sun.direction = {d:?} must be a non-zero vector pointing above the horizon"),
+    )?;
+    check(
+        finite(&s.sun.color) && s.sun.color.iter().all(|&x| x >= 0.0),
+        "color",
+        || "sun.color must be finite and non-negative".into(),
+    )?;
+    check(in_range(s.sun.intensity, 0.0, 1e3), "intensity", || {
+        format!("sun.intensity = {} must be in 0..=1000", s.sun.intensity)
+    })?;
+
+    let k = &s.sky;
+    check(
+        k.cube_size.is_power_of_two() && (16..=1024).contains(&k.cube_size),
+        "cube_size",
+        || {
+            format!(
+                "sky.cube_size = {} must be a power of two in 16..=1024",
+                k.cube_size
+            )
+        },
+    )?;
+    check(in_range(k.sun_size_deg, 0.05, 20.0), "sun_size_deg", || {
+        format!("sky.sun_size_deg = {} must be in 0.05..=20", k.sun_size_deg)
+    })?;
+    check(
+        finite(&k.zenith_color) && finite(&k.horizon_color) && finite(&k.ground_color),
+        "sky",
+        || "sky colours must be finite".into(),
+    )?;
+
+    let w = &s.water;
+    check(in_range(w.size, 1.0, 1e4), "size", || {
+        format!("water.size = {} must be in 1..=10000 m", w.size)
+    })?;
+    check((2..=1024).contains(&w.resolution), "resolution", || {
+        format!("water.resolution = {} must be in 2..=1024", w.resolution)
+    })?;
+    check(
+        w.absorption.iter().all(|&a| in_range(a, 0.0, 100.0)),
+        "absorption",
+        || {
+            format!(
+                "water.absorption = {:?} must be in 0..=100 per metre",
+                w.absorption
+            )
+        },
+    )?;
+    check(w.waves.len() <= MAX_WAVES, "waves", || {
+        format!(
+            "water.waves has {} waves; at most {MAX_WAVES} are supported",
+            w.waves.len()
+        )
+    })?;
+    for (i, wave) in w.waves.iter().enumerate() {
+        let dl = wave.direction[0].hypot(wave.direction[1]);
+        check(dl.is_finite() && dl > 1e-6, "direction", || {
+            format!("water.waves[{i}].direction must be a non-zero 2D vector")
+        })?;
+        check(in_range(wave.wavelength, 0.01, 1e4), "wavelength", || {
+            format!(
+                "water.waves[{i}].wavelength = {} must be in 0.01..=10000 m",
+                wave.wavelength
+            )
+        })?;
+        check(in_range(wave.amplitude, 0.0, 100.0), "amplitude", || {
+            format!(
+                "water.waves[{i}].amplitude = {} must be in 0..=100 m",
+                wave.amplitude
+            )
+        })?;
+        check(in_range(wave.steepness, 0.0, 1.0), "steepness", || {
+            format!(
+                "water.waves[{i}].steepness = {} must be in 0..=1",
+                wave.steepness
+            )
+        })?;
+        check(in_range(wave.speed, -1e3, 1e3), "speed", || {
+            format!(
+                "water.waves[{i}].speed = {} must be finite and below 1000 m/s",
+                wave.speed
+            )
+        })?;
+    }
+
+    check(
+        !s.materials.is_empty() && s.materials.len() <= 64,
+        "materials",
+        || format!("scene needs 1..=64 materials, found {}", s.materials.len()),
+    )?;
+    for m in &s.materials {
+        let name = &m.name;
+        check(
+            finite(&m.base_color) && m.base_color.iter().all(|&x| (0.0..=1.0).contains(&x)),
+            "base_color",
+            || format!("material {name:?}: base_color must be in 0..=1"),
+        )?;
+        check(in_range(m.metallic, 0.0, 1.0), "metallic", || {
+            format!(
+                "material {name:?}: metallic = {} must be in 0..=1",
+                m.metallic
+            )
+        })?;
+        check(in_range(m.roughness, 0.0, 1.0), "roughness", || {
+            format!(
+                "material {name:?}: roughness = {} must be in 0..=1",
+                m.roughness
+            )
+        })?;
+        check(in_range(m.reflectance, 0.0, 1.0), "reflectance", || {
+            format!(
+                "material {name:?}: reflectance = {} must be in 0..=1",
+                m.reflectance
+            )
+        })?;
+        check(
+            in_range(m.normal_strength, 0.0, 10.0),
+            "normal_strength",
+            || {
+                format!(
+                    "material {name:?}: normal_strength = {} must be in 0..=10",
+                    m.normal_strength
+                )
+            },
+        )?;
+        check(in_range(m.uv_scale, 1e-3, 1e3), "uv_scale", || {
+            format!(
+                "material {name:?}: uv_scale = {} must be in 0.001..=1000",
+                m.uv_scale
+            )
+        })?;
+    }
+
+    check(s.objects.len() <= MAX_OBJECTS, "objects", || {
+        format!(
+            "scene has {} objects; at most {MAX_OBJECTS}",
+            s.objects.len()
+        )
+    })?;
+    for o in &s.objects {
+        check(s.material_index(o.material()).is_some(), "material", || {
+            format!("object uses unknown material {:?}", o.material())
+        })?;
+        match o {
+            Object::Seabed {
+                size,
+                depth,
+                resolution,
+                relief,
+                ..
+            } => {
+                check(in_range(*size, 1.0, 1e4), "size", || {
+                    format!("Seabed.size = {size} must be in 1..=10000 m")
+                })?;
+                check(in_range(*depth, 0.1, 1e3), "depth", || {
+                    format!("Seabed.depth = {depth} must be in 0.1..=1000 m")
+                })?;
+                check((2..=1024).contains(resolution), "resolution", || {
+                    format!("Seabed.resolution = {resolution} must be in 2..=1024")
+                })?;
+                check(in_range(*relief, 0.0, 100.0), "relief", || {
+                    format!("Seabed.relief = {relief} must be in 0..=100 m")
+                })?;
+            }
+            Object::Rock {
+                position, radius, ..
+            } => {
+                check(
+                    finite(position) && in_range(*radius, 0.01, 100.0),
+                    "radius",
+                    || format!("Rock.radius = {radius} must be in 0.01..=100 m"),
+                )?;
+            }
+            Object::Floating {
+                shape,
+                position,
+                draft,
+                ..
+            } => {
+                check(finite(position) && draft.is_finite(), "position", || {
+                    "Floating position and draft must be finite".into()
+                })?;
+                let dims: Vec<f32> = match shape {
+                    Shape::Box { size } => size.to_vec(),
+                    Shape::Sphere { radius } => vec![*radius],
+                    Shape::Capsule { radius, length } => vec![*radius, *length],
+                };
+                check(
+                    dims.iter().all(|&x| in_range(x, 0.01, 100.0)),
+                    "shape",
+                    || format!("Floating shape {shape:?}: sizes must be in 0.01..=100 m"),
+                )?;
+            }
+        }
+    }
+
+    let f = &s.school;
+    check(f.count <= MAX_FISH, "count", || {
+        format!(
+            "school.count = {} is too many fish: at most {MAX_FISH}",
+            f.count
+        )
+    })?;
+    check(
+        in_range(f.min_speed, 0.0, 100.0)
+            && in_range(f.max_speed, 0.0, 100.0)
+            && f.min_speed <= f.max_speed,
+        "max_speed",
+        || {
+            format!(
+                "school speeds must satisfy 0 <= min_speed ({}) <= max_speed ({}) <= 100",
+                f.min_speed, f.max_speed
+            )
+        },
+    )?;
+    check(in_range(f.fish_scale, 0.001, 10.0), "fish_scale", || {
+        format!(
+            "school.fish_scale = {} must be in 0.001..=10 m",
+            f.fish_scale
+        )
+    })?;
+    let radii = [f.separation_radius, f.neighbour_radius, f.flee_radius];
+    check(
+        radii.iter().all(|&r| in_range(r, 0.0, 1e3)),
+        "neighbour_radius",
+        || "school radii must be in 0..=1000 m".into(),
+    )?;
+    let weights = [
+        f.separation_weight,
+        f.alignment_weight,
+        f.cohesion_weight,
+        f.bounds_weight,
+        f.flee_weight,
+    ];
+    check(
+        weights.iter().all(|&w| in_range(w, -1e3, 1e3)),
+        "weight",
+        || "school weights must be finite".into(),
+    )?;
+    Ok(())
+}

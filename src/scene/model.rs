@@ -1,0 +1,202 @@
+//! The scene as written in `scenes/*.ron`: camera, sun, sky, water waves, materials, objects and
+//! the fish school. Parsing reports `file:line:col`; values out of range are rejected with the
+//! offending field named, before anything is allocated for them (a scene asking for 1e9 fish
+//! must fail fast, not run out of memory).
+
+use serde::{Deserialize, Serialize};
+
+use crate::school::SchoolParams;
+use crate::waves::GerstnerWave;
+
+/// The most waves the water shader sums (its uniform array has this many slots).
+pub const MAX_WAVES: usize = 8;
+/// The most fish the renderer draws; the instance buffer is sized from this at most.
+pub const MAX_FISH: usize = 20_000;
+pub const MAX_OBJECTS: usize = 256;
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scene {
+    pub camera: Camera,
+    pub sun: Sun,
+    #[serde(default)]
+    pub sky: Sky,
+    pub water: Water,
+    pub materials: Vec<Material>,
+    pub objects: Vec<Object>,
+    #[serde(default)]
+    pub school: SchoolParams,
+}
+
+/// An orbit camera around `target`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Camera {
+    pub target: [f32; 3],
+    /// metres from the target
+    pub distance: f32,
+    /// rotation about +y, degrees
+    pub yaw_deg: f32,
+    /// elevation above the horizontal, degrees
+    pub pitch_deg: f32,
+    /// vertical field of view, degrees
+    pub fov_deg: f32,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Sun {
+    /// direction *towards* the sun (normalised on use)
+    pub direction: [f32; 3],
+    /// linear RGB
+    pub color: [f32; 3],
+    /// irradiance scale of the directional light
+    pub intensity: f32,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Sky {
+    pub zenith_color: [f32; 3],
+    pub horizon_color: [f32; 3],
+    pub ground_color: [f32; 3],
+    /// angular radius of the sun disc, degrees
+    pub sun_size_deg: f32,
+    /// HDR radiance of the sun disc relative to the sun colour
+    pub sun_disc_intensity: f32,
+    /// edge length of one cube face, texels (a power of two)
+    pub cube_size: u32,
+}
+
+impl Default for Sky {
+    fn default() -> Self {
+        Self {
+            zenith_color: [0.18, 0.36, 0.85],
+            horizon_color: [0.75, 0.85, 1.0],
+            ground_color: [0.25, 0.27, 0.3],
+            sun_size_deg: 1.5,
+            sun_disc_intensity: 40.0,
+            cube_size: 128,
+        }
+    }
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Water {
+    /// height of the still surface, metres
+    pub level: f32,
+    /// side of the square water patch, metres
+    pub size: f32,
+    /// grid vertices per side
+    pub resolution: u32,
+    /// Beer–Lambert absorption per metre of water, per RGB channel
+    pub absorption: [f32; 3],
+    /// colour of light scattered back by deep water (linear RGB)
+    pub scatter_color: [f32; 3],
+    pub waves: Vec<GerstnerWave>,
+}
+
+/// A procedurally generated normal map pattern.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum NormalPattern {
+    Flat,
+    /// wind ripples in sand
+    Ripples,
+    /// value-noise bumps (rock)
+    Bumps,
+    /// planks and grain (wood)
+    Planks,
+    /// fine anisotropic scratches (brushed metal)
+    Brushed,
+    /// overlapping scales (fish skin)
+    Scales,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Material {
+    pub name: String,
+    /// linear RGB albedo
+    pub base_color: [f32; 3],
+    pub metallic: f32,
+    /// perceptual roughness, squared to GGX alpha in the shader
+    pub roughness: f32,
+    /// dielectric reflectance at normal incidence, Filament's mapping F0 = 0.16 r²
+    #[serde(default = "default_reflectance")]
+    pub reflectance: f32,
+    pub normal_map: NormalPattern,
+    #[serde(default = "one")]
+    pub normal_strength: f32,
+    /// texture repeats per metre (world-space UVs for terrain, per object otherwise)
+    #[serde(default = "one")]
+    pub uv_scale: f32,
+}
+
+fn default_reflectance() -> f32 {
+    0.5
+}
+fn one() -> f32 {
+    1.0
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum Object {
+    /// The sandy floor: a height field of `size` metres, `depth` below the water level.
+    Seabed {
+        material: String,
+        size: f32,
+        depth: f32,
+        resolution: u32,
+        /// amplitude of the dunes, metres
+        relief: f32,
+    },
+    /// A noisy boulder resting on the seabed.
+    Rock {
+        material: String,
+        position: [f32; 3],
+        radius: f32,
+        seed: u32,
+    },
+    /// A body floating on the waves (bobbing with the surface it sits on).
+    Floating {
+        material: String,
+        shape: Shape,
+        position: [f32; 2],
+        /// how deep its centre sits below the local surface, metres
+        draft: f32,
+    },
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub enum Shape {
+    Box { size: [f32; 3] },
+    Sphere { radius: f32 },
+    Capsule { radius: f32, length: f32 },
+}
+
+impl Object {
+    pub fn material(&self) -> &str {
+        match self {
+            Object::Seabed { material, .. }
+            | Object::Rock { material, .. }
+            | Object::Floating { material, .. } => material,
+        }
+    }
+}
+
+impl Scene {
+    pub fn material_index(&self, name: &str) -> Option<usize> {
+        self.materials.iter().position(|m| m.name == name)
+    }
+
+    pub fn seabed_depth(&self) -> f32 {
+        self.objects
+            .iter()
+            .find_map(|o| match o {
+                Object::Seabed { depth, .. } => Some(*depth),
+                _ => None,
+            })
+            .unwrap_or(4.0)
+    }
+}

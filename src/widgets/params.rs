@@ -1,0 +1,164 @@
+//! A widget's tweakable values, named stably, so the presenter view can show their controls,
+//! keep them across reloads and write them back to the deck file.
+
+use serde::{Deserialize, Serialize};
+
+/// A mutable view of one tweakable value inside a widget's state.
+pub enum ParamValue<'a> {
+    /// A real value in `min..=max`; `log` asks for a logarithmic slider.
+    F64 {
+        value: &'a mut f64,
+        min: f64,
+        max: f64,
+        log: bool,
+    },
+    Bool(&'a mut bool),
+    Usize {
+        value: &'a mut usize,
+        min: usize,
+        max: usize,
+    },
+}
+
+/// One named parameter. `id` is stable (it is the field name in the deck file, e.g. `"h"` or
+/// `"x0.1"`); `label` is for people.
+pub struct Param<'a> {
+    pub id: &'static str,
+    pub label: &'static str,
+    pub value: ParamValue<'a>,
+}
+
+/// A parameter's value detached from the widget, for keeping across reloads.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub enum ParamSnapshot {
+    F64(f64),
+    Bool(bool),
+    Usize(usize),
+}
+
+impl<'a> Param<'a> {
+    pub fn f64(
+        id: &'static str,
+        label: &'static str,
+        value: &'a mut f64,
+        min: f64,
+        max: f64,
+    ) -> Self {
+        Self {
+            id,
+            label,
+            value: ParamValue::F64 {
+                value,
+                min,
+                max,
+                log: false,
+            },
+        }
+    }
+    pub fn f64_log(
+        id: &'static str,
+        label: &'static str,
+        value: &'a mut f64,
+        min: f64,
+        max: f64,
+    ) -> Self {
+        Self {
+            id,
+            label,
+            value: ParamValue::F64 {
+                value,
+                min,
+                max,
+                log: true,
+            },
+        }
+    }
+    pub fn bool(id: &'static str, label: &'static str, value: &'a mut bool) -> Self {
+        Self {
+            id,
+            label,
+            value: ParamValue::Bool(value),
+        }
+    }
+    pub fn usize(
+        id: &'static str,
+        label: &'static str,
+        value: &'a mut usize,
+        min: usize,
+        max: usize,
+    ) -> Self {
+        Self {
+            id,
+            label,
+            value: ParamValue::Usize { value, min, max },
+        }
+    }
+
+    pub fn get(&self) -> ParamSnapshot {
+        match &self.value {
+            ParamValue::F64 { value, .. } => ParamSnapshot::F64(**value),
+            ParamValue::Bool(v) => ParamSnapshot::Bool(**v),
+            ParamValue::Usize { value, .. } => ParamSnapshot::Usize(**value),
+        }
+    }
+
+    /// Sets the value, clamped to its range; a NaN or a value of the wrong kind is refused.
+    pub fn set(&mut self, v: ParamSnapshot) -> Result<(), String> {
+        match (&mut self.value, v) {
+            (
+                ParamValue::F64 {
+                    value, min, max, ..
+                },
+                ParamSnapshot::F64(x),
+            ) => {
+                if !x.is_finite() {
+                    return Err(format!("{}: {x} is not a finite number", self.id));
+                }
+                **value = x.clamp(*min, *max);
+            }
+            (ParamValue::Bool(value), ParamSnapshot::Bool(b)) => **value = b,
+            (ParamValue::Usize { value, min, max }, ParamSnapshot::Usize(n)) => {
+                **value = n.clamp(*min, *max)
+            }
+            (_, other) => return Err(format!("{}: {other:?} has the wrong kind", self.id)),
+        }
+        Ok(())
+    }
+
+    /// A control for this parameter (slider or checkbox), as the presenter view shows it.
+    pub fn ui(&mut self, ui: &mut egui::Ui) -> egui::Response {
+        match &mut self.value {
+            ParamValue::F64 {
+                value,
+                min,
+                max,
+                log,
+            } => ui.add(
+                egui::Slider::new(&mut **value, *min..=*max)
+                    .logarithmic(*log)
+                    .text(self.label),
+            ),
+            ParamValue::Bool(v) => ui.checkbox(&mut **v, self.label),
+            ParamValue::Usize { value, min, max } => {
+                ui.add(egui::Slider::new(&mut **value, *min..=*max).text(self.label))
+            }
+        }
+    }
+}
+
+/// All of a widget's parameter values by id.
+pub fn snapshot(w: &mut dyn super::SlideWidget) -> Vec<(String, ParamSnapshot)> {
+    w.params()
+        .iter()
+        .map(|p| (p.id.to_owned(), p.get()))
+        .collect()
+}
+
+/// Applies saved values by id; ids the widget no longer has are skipped (the deck changed).
+pub fn restore(w: &mut dyn super::SlideWidget, saved: &[(String, ParamSnapshot)]) {
+    for mut p in w.params() {
+        if let Some((_, v)) = saved.iter().find(|(id, _)| id == p.id) {
+            let _ = p.set(*v);
+        }
+    }
+}

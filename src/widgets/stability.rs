@@ -1,0 +1,366 @@
+//! 8. Stability regions: where |R(z)| ≤ 1 in the complex plane, z = hλ, for Euler, midpoint,
+//! RK4 and any tableau written in the deck. R is the method's stability function, evaluated
+//! from its Butcher tableau, so a tableau in the deck gets its true region.
+
+use egui_plot::{Line, Plot, PlotImage, PlotPoint};
+use serde::{Deserialize, Serialize};
+
+use super::methods::MethodId;
+use super::style;
+use super::{Param, SlideWidget};
+use crate::ode::Tableau;
+
+/// Just enough complex arithmetic for stability functions.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct C(pub f64, pub f64);
+
+impl C {
+    fn add(self, o: C) -> C {
+        C(self.0 + o.0, self.1 + o.1)
+    }
+    fn mul(self, o: C) -> C {
+        C(self.0 * o.0 - self.1 * o.1, self.0 * o.1 + self.1 * o.0)
+    }
+    fn scale(self, s: f64) -> C {
+        C(self.0 * s, self.1 * s)
+    }
+    pub fn abs(self) -> f64 {
+        self.0.hypot(self.1)
+    }
+}
+
+/// R(z) of an explicit tableau: the factor one step multiplies y by on y' = λy, z = hλ.
+/// Stage values gᵢ = 1 + z Σⱼ<ᵢ aᵢⱼ gⱼ, then R = 1 + z Σ bᵢ gᵢ.
+pub fn stability_fn(t: &Tableau, z: C) -> C {
+    let s = t.stages();
+    let mut g = vec![C(0.0, 0.0); s];
+    for i in 0..s {
+        let mut acc = C(0.0, 0.0);
+        for (j, gj) in g.iter().enumerate().take(i) {
+            acc = acc.add(gj.scale(t.a[i][j]));
+        }
+        g[i] = C(1.0, 0.0).add(z.mul(acc));
+    }
+    let mut sum = C(0.0, 0.0);
+    for (i, gi) in g.iter().enumerate() {
+        sum = sum.add(gi.scale(t.b[i]));
+    }
+    C(1.0, 0.0).add(z.mul(sum))
+}
+
+/// The largest h with |R(h λ)| ≤ 1 for all smaller h (bisection after a coarse scan);
+/// 0 when no positive h is stable, ∞ (capped at `h_max`) when all are.
+pub fn stable_h_limit(t: &Tableau, lambda: C, h_max: f64) -> f64 {
+    let stable = |h: f64| stability_fn(t, lambda.scale(h)).abs() <= 1.0 + 1e-12;
+    let n = 4000;
+    let mut last_ok = 0.0;
+    for i in 1..=n {
+        let h = h_max * i as f64 / n as f64;
+        if !stable(h) {
+            let (mut lo, mut hi) = (last_ok, h);
+            if lo == 0.0 && !stable(h * 1e-6) {
+                return 0.0;
+            }
+            for _ in 0..60 {
+                let mid = 0.5 * (lo + hi);
+                if stable(mid) { lo = mid } else { hi = mid }
+            }
+            // below a thousandth of the range it is round-off at the origin, not stability
+            return if lo < 1e-3 * h_max { 0.0 } else { lo };
+        }
+        last_ok = h;
+    }
+    h_max
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StabilitySpec {
+    #[serde(default = "default_methods")]
+    pub methods: Vec<MethodId>,
+    /// Further methods, e.g. written out in the deck: `(name: "Ralston", a: [...], b: [...], c: [...])`.
+    #[serde(default)]
+    pub tableaux: Vec<Tableau>,
+    /// Visible window (re_min, re_max, im_min, im_max).
+    #[serde(default = "default_view")]
+    pub view: (f64, f64, f64, f64),
+    /// Show z = hλ for this λ (e.g. the oscillator's ±i) as a marker moving with h.
+    #[serde(default)]
+    pub lambda: Option<(f64, f64)>,
+    #[serde(default = "default_h")]
+    pub h: f64,
+}
+
+fn default_methods() -> Vec<MethodId> {
+    vec![MethodId::Euler, MethodId::Midpoint, MethodId::Rk4]
+}
+fn default_view() -> (f64, f64, f64, f64) {
+    (-3.5, 1.5, -3.0, 3.0)
+}
+fn default_h() -> f64 {
+    1.0
+}
+
+const EXTRA_COLORS: [egui::Color32; 3] = [style::HEUN, style::DOPRI, style::RK4_TYPO];
+const RES: usize = 360;
+
+pub struct Stability {
+    pub spec: StabilitySpec,
+    initial: StabilitySpec,
+    cache: Option<(
+        StabilitySpec,
+        egui::TextureHandle,
+        Vec<(String, egui::Color32, Vec<[[f64; 2]; 2]>)>,
+    )>,
+}
+
+impl Stability {
+    pub fn new(spec: StabilitySpec) -> Self {
+        Self {
+            initial: spec.clone(),
+            spec,
+            cache: None,
+        }
+    }
+
+    /// (name, colour, tableau) of every method drawn.
+    pub fn entries(&self) -> Vec<(String, egui::Color32, Tableau)> {
+        let mut v: Vec<_> = self
+            .spec
+            .methods
+            .iter()
+            .filter_map(|m| {
+                m.tableau()
+                    .map(|t| (m.name().to_owned(), style::method_color(*m), t))
+            })
+            .collect();
+        for (i, t) in self.spec.tableaux.iter().enumerate() {
+            v.push((
+                t.name.clone(),
+                EXTRA_COLORS[i % EXTRA_COLORS.len()],
+                t.clone(),
+            ));
+        }
+        v
+    }
+
+    /// Fill image (translucent colour where each method is stable) and the |R| = 1 contours
+    /// by marching squares, both on a RES × RES grid over the view.
+    fn build(
+        &self,
+        ctx: &egui::Context,
+    ) -> (
+        egui::TextureHandle,
+        Vec<(String, egui::Color32, Vec<[[f64; 2]; 2]>)>,
+    ) {
+        let (x0, x1, y0, y1) = self.spec.view;
+        let at = |i: usize, j: usize| {
+            C(
+                x0 + (x1 - x0) * i as f64 / (RES - 1) as f64,
+                y1 - (y1 - y0) * j as f64 / (RES - 1) as f64,
+            )
+        };
+        let mut rgba = vec![[255f32, 255.0, 255.0, 0.0]; RES * RES];
+        let mut contours = Vec::new();
+        for (name, color, tab) in self.entries() {
+            let vals: Vec<f64> = (0..RES * RES)
+                .map(|k| stability_fn(&tab, at(k % RES, k / RES)).abs() - 1.0)
+                .collect();
+            for (k, v) in vals.iter().enumerate() {
+                if *v <= 0.0 {
+                    let p = &mut rgba[k];
+                    // multiply-blend a light tint, so overlaps read darker
+                    let tint = [color.r() as f32, color.g() as f32, color.b() as f32];
+                    for c in 0..3 {
+                        p[c] *= 0.78 + 0.22 * tint[c] / 255.0;
+                    }
+                    p[3] = 255.0;
+                }
+            }
+            contours.push((name, color, marching_squares(&vals, |i, j| at(i, j))));
+        }
+        let pixels: Vec<egui::Color32> = rgba
+            .iter()
+            .map(|p| {
+                if p[3] == 0.0 {
+                    egui::Color32::TRANSPARENT
+                } else {
+                    egui::Color32::from_rgb(p[0] as u8, p[1] as u8, p[2] as u8)
+                }
+            })
+            .collect();
+        let image = egui::ColorImage {
+            size: [RES, RES],
+            source_size: egui::vec2(RES as f32, RES as f32),
+            pixels,
+        };
+        (
+            ctx.load_texture("stability-regions", image, egui::TextureOptions::LINEAR),
+            contours,
+        )
+    }
+}
+
+/// Segments of the zero level set of `vals` (RES × RES, row-major), in plot coordinates.
+fn marching_squares(vals: &[f64], at: impl Fn(usize, usize) -> C) -> Vec<[[f64; 2]; 2]> {
+    let mut segs = Vec::new();
+    let lerp = |a: C, b: C, va: f64, vb: f64| {
+        let t = va / (va - vb);
+        [a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1)]
+    };
+    for j in 0..RES - 1 {
+        for i in 0..RES - 1 {
+            let corners = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)];
+            let v: Vec<f64> = corners.iter().map(|&(a, b)| vals[b * RES + a]).collect();
+            let mut pts = Vec::with_capacity(4);
+            for e in 0..4 {
+                let (a, b) = (e, (e + 1) % 4);
+                if (v[a] <= 0.0) != (v[b] <= 0.0) {
+                    pts.push(lerp(
+                        at(corners[a].0, corners[a].1),
+                        at(corners[b].0, corners[b].1),
+                        v[a],
+                        v[b],
+                    ));
+                }
+            }
+            if pts.len() >= 2 {
+                segs.push([pts[0], pts[1]]);
+            }
+            if pts.len() == 4 {
+                segs.push([pts[2], pts[3]]);
+            }
+        }
+    }
+    segs
+}
+
+impl SlideWidget for Stability {
+    fn ui(&mut self, ui: &mut egui::Ui) {
+        style::projector_text(ui);
+        if !self.cache.as_ref().is_some_and(|(s, ..)| {
+            s.methods == self.spec.methods
+                && s.tableaux == self.spec.tableaux
+                && s.view == self.spec.view
+        }) {
+            let (tex, contours) = self.build(ui.ctx());
+            self.cache = Some((self.spec.clone(), tex, contours));
+        }
+        let entries = self.entries();
+        ui.horizontal(|ui| {
+            ui.label("|R(hλ)| ≤ 1:");
+            for (name, color, _) in &entries {
+                ui.colored_label(*color, egui::RichText::new(name).strong());
+            }
+            if self.spec.lambda.is_some() {
+                ui.add(egui::Slider::new(&mut self.spec.h, 0.01..=4.0).text("h"));
+            }
+        });
+        if let Some((lr, li)) = self.spec.lambda {
+            ui.horizontal(|ui| {
+                ui.label(format!(
+                    "λ = {lr} {} {}i, stable for h <",
+                    if li < 0.0 { "−" } else { "+" },
+                    li.abs()
+                ));
+                for (name, color, t) in &entries {
+                    let lim = stable_h_limit(t, C(lr, li), 10.0);
+                    ui.colored_label(*color, format!("{name}: {}", style::fmt_num(lim)));
+                }
+            });
+        }
+        let Some((_, tex, contours)) = &self.cache else {
+            return;
+        };
+        let (x0, x1, y0, y1) = self.spec.view;
+        let z = self
+            .spec
+            .lambda
+            .map(|(a, b)| [a * self.spec.h, b * self.spec.h]);
+        Plot::new("stability")
+            .data_aspect(1.0)
+            .allow_drag(false)
+            .allow_zoom(false)
+            .allow_scroll(false)
+            .x_axis_label("Re z")
+            .y_axis_label("Im z")
+            .default_x_bounds(x0, x1)
+            .default_y_bounds(y0, y1)
+            .show(ui, |p| {
+                p.add(PlotImage::new(
+                    "regions",
+                    tex.id(),
+                    PlotPoint::new((x0 + x1) / 2.0, (y0 + y1) / 2.0),
+                    egui::vec2((x1 - x0) as f32, (y1 - y0) as f32),
+                ));
+                p.line(
+                    Line::new("axis", vec![[x0, 0.0], [x1, 0.0]])
+                        .color(egui::Color32::GRAY)
+                        .width(1.0),
+                );
+                p.line(
+                    Line::new("axis", vec![[0.0, y0], [0.0, y1]])
+                        .color(egui::Color32::GRAY)
+                        .width(1.0),
+                );
+                for (name, color, segs) in contours {
+                    for s in segs {
+                        p.line(
+                            Line::new(name.clone(), s.to_vec())
+                                .color(*color)
+                                .width(2.5)
+                                .allow_hover(false),
+                        );
+                    }
+                }
+                if let Some(z) = z {
+                    p.points(
+                        egui_plot::Points::new("z = hλ", vec![z, [z[0], -z[1]]])
+                            .color(egui::Color32::BLACK)
+                            .radius(7.0),
+                    );
+                }
+            });
+    }
+
+    fn params(&mut self) -> Vec<Param<'_>> {
+        vec![Param::f64_log(
+            "h",
+            "step h (for the λ marker)",
+            &mut self.spec.h,
+            0.01,
+            4.0,
+        )]
+    }
+
+    spec_plumbing!(Stability);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn known_stability_limits() {
+        // real axis: Euler and midpoint 2, RK4 ≈ 2.785; imaginary axis: RK4 2√2, Euler 0
+        let lim = |t: Tableau, l: C| stable_h_limit(&t, l, 10.0);
+        assert!((lim(Tableau::euler(), C(-1.0, 0.0)) - 2.0).abs() < 1e-9);
+        assert!((lim(Tableau::midpoint(), C(-1.0, 0.0)) - 2.0).abs() < 1e-9);
+        assert!((lim(Tableau::rk4(), C(-1.0, 0.0)) - 2.785_293_563).abs() < 1e-6);
+        assert!((lim(Tableau::rk4(), C(0.0, 1.0)) - 8f64.sqrt()).abs() < 1e-9);
+        assert_eq!(lim(Tableau::euler(), C(0.0, 1.0)), 0.0);
+    }
+
+    #[test]
+    fn rk4_stability_function_is_the_taylor_polynomial() {
+        let z = C(-0.7, 0.4);
+        let r = stability_fn(&Tableau::rk4(), z);
+        let mut sum = C(1.0, 0.0);
+        let mut term = C(1.0, 0.0);
+        for k in 1..=4 {
+            term = term.mul(z).scale(1.0 / k as f64);
+            sum = sum.add(term);
+        }
+        assert!((r.0 - sum.0).abs() < 1e-14 && (r.1 - sum.1).abs() < 1e-14);
+    }
+}

@@ -1,0 +1,283 @@
+//! 2. One step, built up stage by stage: Euler's tangent; midpoint's half step, the slope at
+//! the midpoint, then the full step with it; RK4's k1..k4 as arrows, then their weighted
+//! combination. `[` and `]` step backwards and forwards through the construction.
+
+use egui_plot::{Arrows, Line, Plot, PlotPoints, Points, Text};
+use serde::{Deserialize, Serialize};
+
+use super::methods::{MethodId, fixed_path};
+use super::problems::Field1;
+use super::style::{self, fmt_num};
+use super::{Param, SlideWidget};
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StepSpec {
+    #[serde(default = "default_field")]
+    pub field: Field1,
+    #[serde(default = "default_start")]
+    pub start: (f64, f64),
+    #[serde(default = "default_h")]
+    pub h: f64,
+    /// Euler, Midpoint or Rk4.
+    #[serde(default = "default_method")]
+    pub method: MethodId,
+    /// How far the construction is shown: 0 = just the start, `stages(method)` = complete.
+    #[serde(default)]
+    pub stage: usize,
+}
+
+fn default_field() -> Field1 {
+    Field1::Forced
+}
+fn default_start() -> (f64, f64) {
+    (0.0, 1.5)
+}
+fn default_h() -> f64 {
+    1.5
+}
+fn default_method() -> MethodId {
+    MethodId::Rk4
+}
+
+/// Number of reveal stages of a construction.
+pub fn stages(m: MethodId) -> usize {
+    match m {
+        MethodId::Euler => 2,
+        MethodId::Midpoint => 3,
+        _ => 5,
+    }
+}
+
+/// One drawn element of the construction.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Arrow {
+    pub from: [f64; 2],
+    pub to: [f64; 2],
+    pub label: String,
+    /// Stage (1-based) at which it appears.
+    pub stage: usize,
+    /// Drawn faint (a sampled slope) rather than bold (a step actually taken).
+    pub faint: bool,
+}
+
+/// The construction of one step of `m` from `(t0, x0)`: arrows and the end point. The end
+/// point comes from the project's integrator, so the picture is the method, not a drawing of it.
+pub fn construct(f: Field1, m: MethodId, t0: f64, x0: f64, h: f64) -> (Vec<Arrow>, [f64; 2]) {
+    let slope_mark = |t: f64, x: f64, k: f64, label: &str, stage: usize| {
+        let d = 0.18 * h;
+        Arrow {
+            from: [t - d, x - d * k],
+            to: [t + d, x + d * k],
+            label: label.into(),
+            stage,
+            faint: true,
+        }
+    };
+    let step = |t: f64, x: f64, dt: f64, k: f64, label: &str, stage: usize| Arrow {
+        from: [t, x],
+        to: [t + dt, x + dt * k],
+        label: label.into(),
+        stage,
+        faint: false,
+    };
+    let mut out = Vec::new();
+    let k1 = f.f(t0, x0);
+    match m {
+        MethodId::Euler => {
+            out.push(slope_mark(t0, x0, k1, "k₁ = f(x₀)", 1));
+            out.push(step(t0, x0, h, k1, "x₀ + h k₁", 2));
+        }
+        MethodId::Midpoint => {
+            out.push(step(t0, x0, h / 2.0, k1, "half step", 1));
+            let (tm, xm) = (t0 + h / 2.0, x0 + h / 2.0 * k1);
+            let k2 = f.f(tm, xm);
+            out.push(slope_mark(tm, xm, k2, "f at midpoint", 2));
+            out.push(step(t0, x0, h, k2, "x₀ + h f(mid)", 3));
+        }
+        _ => {
+            out.push(step(t0, x0, h / 2.0, k1, "k₁", 1));
+            let k2 = f.f(t0 + h / 2.0, x0 + h / 2.0 * k1);
+            out.push(slope_mark(t0 + h / 2.0, x0 + h / 2.0 * k1, k2, "", 2));
+            out.push(step(t0, x0, h / 2.0, k2, "k₂", 2));
+            let k3 = f.f(t0 + h / 2.0, x0 + h / 2.0 * k2);
+            out.push(slope_mark(t0 + h / 2.0, x0 + h / 2.0 * k2, k3, "", 3));
+            out.push(step(t0, x0, h, k3, "k₃", 3));
+            let k4 = f.f(t0 + h, x0 + h * k3);
+            out.push(slope_mark(t0 + h, x0 + h * k3, k4, "k₄", 4));
+            let k = (k1 + 2.0 * k2 + 2.0 * k3 + k4) / 6.0;
+            out.push(step(t0, x0, h, k, "(k₁+2k₂+2k₃+k₄)/6", 5));
+        }
+    }
+    let sys = f.system();
+    let tab = m.tableau().expect("a stepping method");
+    let end = fixed_path(&sys, tab, t0, &[x0], h, 1, f64::INFINITY);
+    (out, [t0 + h, end.last()[0]])
+}
+
+const H_RANGE: (f64, f64) = (0.1, 3.0);
+
+pub struct StepConstruction {
+    pub spec: StepSpec,
+    initial: StepSpec,
+}
+
+impl StepConstruction {
+    pub fn new(spec: StepSpec) -> Self {
+        Self {
+            initial: spec.clone(),
+            spec,
+        }
+    }
+}
+
+impl SlideWidget for StepConstruction {
+    fn ui(&mut self, ui: &mut egui::Ui) {
+        style::projector_text(ui);
+        let m = match self.spec.method {
+            MethodId::Euler | MethodId::Midpoint => self.spec.method,
+            _ => MethodId::Rk4,
+        };
+        let n = stages(m);
+        let k = style::keys(ui);
+        if k.forward {
+            self.spec.stage = (self.spec.stage + 1).min(n);
+        }
+        if k.back {
+            self.spec.stage = self.spec.stage.saturating_sub(1);
+        }
+        if k.h_up {
+            self.spec.h *= style::H_KEY_FACTOR;
+        }
+        if k.h_down {
+            self.spec.h /= style::H_KEY_FACTOR;
+        }
+        self.spec.h = self.spec.h.clamp(H_RANGE.0, H_RANGE.1);
+        self.spec.stage = self.spec.stage.min(n);
+        ui.horizontal(|ui| {
+            for c in [MethodId::Euler, MethodId::Midpoint, MethodId::Rk4] {
+                let text = egui::RichText::new(c.name())
+                    .color(style::method_color(c))
+                    .strong();
+                if ui.selectable_label(m == c, text).clicked() {
+                    self.spec.method = c;
+                    self.spec.stage = 0;
+                }
+            }
+            ui.add(egui::Slider::new(&mut self.spec.h, H_RANGE.0..=H_RANGE.1).text("h"));
+            ui.add(egui::Slider::new(&mut self.spec.stage, 0..=n).text("stage  [ ]"));
+        });
+        let (t0, x0, h) = (self.spec.start.0, self.spec.start.1, self.spec.h);
+        let f = self.spec.field;
+        let (arrows, end) = construct(f, m, t0, x0, h);
+        let stage = self.spec.stage;
+        let color = style::method_color(m);
+        let exact: Vec<[f64; 2]> = (0..=200)
+            .filter_map(|i| {
+                let t = t0 - 0.1 * h + i as f64 / 200.0 * 1.3 * h;
+                f.exact(t0, x0, t).map(|x| [t, x])
+            })
+            .collect();
+        let truth = f.exact(t0, x0, t0 + h);
+        if stage == n {
+            let err = truth
+                .map(|x| fmt_num((end[1] - x).abs()))
+                .unwrap_or_else(|| "–".into());
+            ui.label(format!(
+                "x(t₀+h) ≈ {}   error of this one step: {err}",
+                fmt_num(end[1])
+            ));
+        } else {
+            ui.label(format!("stage {stage} of {n}: press ] to continue"));
+        }
+        Plot::new("step-construction")
+            .allow_drag(false)
+            .allow_zoom(false)
+            .allow_scroll(false)
+            .x_axis_label("t")
+            .y_axis_label("x")
+            .include_x(t0 - 0.1 * h)
+            .include_x(t0 + 1.2 * h)
+            .show(ui, |p| {
+                p.line(Line::new("exact", exact).color(style::EXACT).width(2.0));
+                for a in arrows.iter().filter(|a| a.stage <= stage) {
+                    let (c, w) = if a.faint {
+                        (style::FIELD, 0.0)
+                    } else {
+                        (color, 12.0)
+                    };
+                    if a.faint {
+                        p.line(Line::new("slope", vec![a.from, a.to]).color(c).width(4.0));
+                    } else {
+                        p.add(
+                            Arrows::new(
+                                a.label.clone(),
+                                PlotPoints::from(vec![a.from]),
+                                PlotPoints::from(vec![a.to]),
+                            )
+                            .color(c)
+                            .tip_length(w),
+                        );
+                        p.line(
+                            Line::new(a.label.clone(), vec![a.from, a.to])
+                                .color(c)
+                                .width(style::PATH_WIDTH),
+                        );
+                    }
+                    if !a.label.is_empty() {
+                        let pos = egui_plot::PlotPoint::new(a.to[0], a.to[1]);
+                        p.text(
+                            Text::new(
+                                a.label.clone(),
+                                pos,
+                                egui::RichText::new(&a.label).size(20.0).color(c),
+                            )
+                            .anchor(egui::Align2::LEFT_BOTTOM),
+                        );
+                    }
+                }
+                p.points(
+                    Points::new("x0", vec![[t0, x0]])
+                        .color(egui::Color32::BLACK)
+                        .radius(6.0),
+                );
+                if stage == n {
+                    p.points(Points::new("x1", vec![end]).color(color).radius(7.0));
+                    if let Some(x) = truth {
+                        p.points(
+                            Points::new("exact x(t0+h)", vec![[t0 + h, x]])
+                                .color(style::EXACT)
+                                .radius(5.0),
+                        );
+                    }
+                }
+            });
+    }
+
+    fn params(&mut self) -> Vec<Param<'_>> {
+        vec![
+            Param::f64("h", "step h", &mut self.spec.h, H_RANGE.0, H_RANGE.1),
+            Param::usize("stage", "construction stage", &mut self.spec.stage, 0, 5),
+        ]
+    }
+
+    spec_plumbing!(StepConstruction);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn drawn_rk4_combination_lands_on_the_integrators_step() {
+        for m in [MethodId::Euler, MethodId::Midpoint, MethodId::Rk4] {
+            let (arrows, end) = construct(Field1::Forced, m, 0.2, 1.1, 0.9);
+            let last = arrows.last().unwrap();
+            assert!(
+                (last.to[0] - end[0]).abs() < 1e-12 && (last.to[1] - end[1]).abs() < 1e-12,
+                "{m:?}"
+            );
+            assert_eq!(last.stage, stages(m));
+        }
+    }
+}

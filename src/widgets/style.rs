@@ -1,0 +1,79 @@
+//! Shared look of the plot widgets: one colour per method everywhere (Okabe–Ito palette,
+//! readable by colour-blind students and on a washed-out projector), large text, key bindings.
+
+use egui::Color32;
+
+use super::methods::MethodId;
+
+pub const EXACT: Color32 = Color32::from_rgb(30, 30, 30);
+pub const EULER: Color32 = Color32::from_rgb(213, 94, 0);
+pub const MIDPOINT: Color32 = Color32::from_rgb(0, 114, 178);
+pub const RK4: Color32 = Color32::from_rgb(0, 158, 115);
+pub const HEUN: Color32 = Color32::from_rgb(204, 121, 167);
+pub const RK4_TYPO: Color32 = Color32::from_rgb(230, 159, 0);
+pub const DOPRI: Color32 = Color32::from_rgb(86, 180, 233);
+pub const FIELD: Color32 = Color32::from_rgb(150, 150, 160);
+pub const DIVERGED: Color32 = Color32::from_rgb(200, 0, 0);
+
+pub fn method_color(m: MethodId) -> Color32 {
+    match m {
+        MethodId::Euler => EULER,
+        MethodId::Midpoint => MIDPOINT,
+        MethodId::Heun => HEUN,
+        MethodId::Rk4 => RK4,
+        MethodId::Rk4Typo => RK4_TYPO,
+        MethodId::Exact => EXACT,
+    }
+}
+
+/// Line width of solution paths, in points.
+pub const PATH_WIDTH: f32 = 3.0;
+
+/// Makes text in `ui` large enough for the back row (applies to this ui and its children).
+pub fn projector_text(ui: &mut egui::Ui) {
+    use egui::{FontId, TextStyle};
+    let s = ui.style_mut();
+    s.text_styles
+        .insert(TextStyle::Body, FontId::proportional(20.0));
+    s.text_styles
+        .insert(TextStyle::Button, FontId::proportional(20.0));
+    s.text_styles
+        .insert(TextStyle::Small, FontId::proportional(16.0));
+    s.text_styles
+        .insert(TextStyle::Monospace, FontId::monospace(18.0));
+    s.spacing.slider_width = 220.0;
+}
+
+/// The widget keys, documented in docs/slides.md: `-`/`+` step size, `[`/`]` step through,
+/// so they never clash with the app's slide navigation (arrows, space, page keys).
+pub struct Keys {
+    pub h_down: bool,
+    pub h_up: bool,
+    pub back: bool,
+    pub forward: bool,
+}
+
+pub fn keys(ui: &egui::Ui) -> Keys {
+    ui.input(|i| Keys {
+        h_down: i.key_pressed(egui::Key::Minus),
+        h_up: i.key_pressed(egui::Key::Plus) || i.key_pressed(egui::Key::Equals),
+        back: i.key_pressed(egui::Key::OpenBracket),
+        forward: i.key_pressed(egui::Key::CloseBracket),
+    })
+}
+
+/// One key press scales h by this factor (four presses double it).
+pub const H_KEY_FACTOR: f64 = 1.189_207_115_002_721; // 2^(1/4)
+
+/// A readable number for labels: 3 significant digits, scientific outside 1e-3..1e4.
+pub fn fmt_num(x: f64) -> String {
+    if !x.is_finite() {
+        return "∞".into();
+    }
+    let a = x.abs();
+    if a != 0.0 && !(1e-3..1e4).contains(&a) {
+        format!("{x:.2e}")
+    } else {
+        format!("{x:.3}")
+    }
+}

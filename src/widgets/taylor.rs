@@ -1,0 +1,239 @@
+//! 5. Taylor series: the truncations of order 1, 2, 3, … of a function around a point. Order 1
+//! is drawn in Euler's colour, 2 in midpoint's and 4 in RK4's: the order a method matches.
+
+use egui_plot::{Line, Plot, Points};
+use serde::{Deserialize, Serialize};
+
+use super::style;
+use super::{Param, SlideWidget};
+
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub enum TaylorFn {
+    Sin,
+    Cos,
+    Exp,
+    /// ln(1 + x), radius of convergence 1.
+    Log1p,
+}
+
+impl TaylorFn {
+    pub fn eval(self, x: f64) -> f64 {
+        match self {
+            TaylorFn::Sin => x.sin(),
+            TaylorFn::Cos => x.cos(),
+            TaylorFn::Exp => x.exp(),
+            TaylorFn::Log1p => x.ln_1p(),
+        }
+    }
+
+    /// The k-th derivative at `a` (NaN outside the domain).
+    pub fn derivative(self, k: usize, a: f64) -> f64 {
+        match self {
+            TaylorFn::Sin => (a + k as f64 * std::f64::consts::FRAC_PI_2).sin(),
+            TaylorFn::Cos => (a + k as f64 * std::f64::consts::FRAC_PI_2).cos(),
+            TaylorFn::Exp => a.exp(),
+            TaylorFn::Log1p => {
+                if k == 0 {
+                    return a.ln_1p();
+                }
+                // d^k/dx^k ln(1+x) = (−1)^(k−1) (k−1)! / (1+x)^k
+                let fact: f64 = (1..k).map(|i| i as f64).product();
+                let sign = if k % 2 == 1 { 1.0 } else { -1.0 };
+                sign * fact / (1.0 + a).powi(k as i32)
+            }
+        }
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            TaylorFn::Sin => "sin t",
+            TaylorFn::Cos => "cos t",
+            TaylorFn::Exp => "eᵗ",
+            TaylorFn::Log1p => "ln(1 + t)",
+        }
+    }
+}
+
+/// The Taylor polynomial of order `n` around `a`, at `x`.
+pub fn truncation(f: TaylorFn, a: f64, n: usize, x: f64) -> f64 {
+    let h = x - a;
+    let mut term = 1.0; // h^k / k!
+    let mut sum = 0.0;
+    for k in 0..=n {
+        if k > 0 {
+            term *= h / k as f64;
+        }
+        sum += f.derivative(k, a) * term;
+    }
+    sum
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TaylorSpec {
+    #[serde(default = "default_fn")]
+    pub function: TaylorFn,
+    /// Expansion point.
+    #[serde(default)]
+    pub a: f64,
+    /// Highest order drawn (all orders 1..=order are shown).
+    #[serde(default = "default_order")]
+    pub order: usize,
+    /// Visible t range.
+    #[serde(default = "default_range")]
+    pub range: (f64, f64),
+}
+
+fn default_fn() -> TaylorFn {
+    TaylorFn::Sin
+}
+fn default_order() -> usize {
+    4
+}
+fn default_range() -> (f64, f64) {
+    (-4.0, 4.0)
+}
+
+pub fn order_color(n: usize) -> egui::Color32 {
+    match n {
+        1 => style::EULER,
+        2 => style::MIDPOINT,
+        4 => style::RK4,
+        3 => style::HEUN,
+        _ => egui::Color32::from_gray(130),
+    }
+}
+
+pub struct Taylor {
+    pub spec: TaylorSpec,
+    initial: TaylorSpec,
+}
+
+impl Taylor {
+    pub fn new(spec: TaylorSpec) -> Self {
+        Self {
+            initial: spec.clone(),
+            spec,
+        }
+    }
+}
+
+impl SlideWidget for Taylor {
+    fn ui(&mut self, ui: &mut egui::Ui) {
+        style::projector_text(ui);
+        let k = style::keys(ui);
+        if k.forward {
+            self.spec.order = (self.spec.order + 1).min(12);
+        }
+        if k.back {
+            self.spec.order = self.spec.order.saturating_sub(1).max(1);
+        }
+        let (lo, hi) = self.spec.range;
+        ui.horizontal(|ui| {
+            ui.add(egui::Slider::new(&mut self.spec.order, 1..=12).text("order  [ ]"));
+            ui.add(egui::Slider::new(&mut self.spec.a, lo..=hi).text("around a"));
+        });
+        let s = self.spec.clone();
+        ui.horizontal_wrapped(|ui| {
+            ui.label(egui::RichText::new(format!("{} ≈", s.function.name())).strong());
+            for n in 1..=s.order.min(6) {
+                ui.colored_label(
+                    order_color(n),
+                    egui::RichText::new(format!("order {n}")).strong(),
+                );
+            }
+        });
+        let xs: Vec<f64> = (0..=400)
+            .map(|i| lo + (hi - lo) * i as f64 / 400.0)
+            .collect();
+        let f_pts: Vec<[f64; 2]> = xs
+            .iter()
+            .filter_map(|&x| {
+                let y = s.function.eval(x);
+                y.is_finite().then_some([x, y])
+            })
+            .collect();
+        let (ymin, ymax) = f_pts
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+                (a.min(p[1]), b.max(p[1]))
+            });
+        let pad = 0.35 * (ymax - ymin).max(1.0);
+        let (y0, y1) = (ymin - pad, ymax + pad);
+        Plot::new("taylor")
+            .allow_drag(false)
+            .allow_zoom(false)
+            .allow_scroll(false)
+            .x_axis_label("t")
+            .default_x_bounds(lo, hi)
+            .default_y_bounds(y0, y1)
+            .show(ui, |p| {
+                p.set_plot_bounds(egui_plot::PlotBounds::from_min_max([lo, y0], [hi, y1]));
+                for n in 1..=s.order.clamp(1, 12) {
+                    // clamp far outside the view so the tessellator never sees 1e30
+                    let pts: Vec<[f64; 2]> = xs
+                        .iter()
+                        .map(|&x| {
+                            [
+                                x,
+                                truncation(s.function, s.a, n, x)
+                                    .clamp(y0 - 10.0 * pad, y1 + 10.0 * pad),
+                            ]
+                        })
+                        .filter(|p| p[1].is_finite())
+                        .collect();
+                    let w = if matches!(n, 1 | 2 | 4) {
+                        style::PATH_WIDTH
+                    } else {
+                        2.0
+                    };
+                    p.line(
+                        Line::new(format!("order {n}"), pts)
+                            .color(order_color(n))
+                            .width(w),
+                    );
+                }
+                p.line(
+                    Line::new(s.function.name(), f_pts)
+                        .color(style::EXACT)
+                        .width(3.5),
+                );
+                let fa = s.function.eval(s.a);
+                if fa.is_finite() {
+                    p.points(
+                        Points::new("a", vec![[s.a, fa]])
+                            .color(egui::Color32::BLACK)
+                            .radius(7.0),
+                    );
+                }
+            });
+    }
+
+    fn params(&mut self) -> Vec<Param<'_>> {
+        let (lo, hi) = self.spec.range;
+        vec![
+            Param::usize("order", "highest order", &mut self.spec.order, 1, 12),
+            Param::f64("a", "expansion point", &mut self.spec.a, lo, hi),
+        ]
+    }
+
+    spec_plumbing!(Taylor);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn truncation_error_shrinks_like_the_next_power() {
+        for f in [TaylorFn::Sin, TaylorFn::Exp, TaylorFn::Log1p] {
+            for n in 1..5 {
+                let e = |h: f64| (truncation(f, 0.3, n, 0.3 + h) - f.eval(0.3 + h)).abs();
+                let ratio = e(0.02) / e(0.01);
+                let expected = 2f64.powi(n as i32 + 1);
+                // the next term can vanish (sin's even terms at special points), so allow ≥
+                assert!(ratio > expected * 0.8, "{f:?} order {n}: {ratio}");
+            }
+        }
+    }
+}

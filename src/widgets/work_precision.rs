@@ -1,0 +1,338 @@
+//! 7. Speed vs error: the work–precision diagram (error vs f-evaluations, and vs wall time) of
+//! Euler, midpoint, RK4 and a fifth-order method, computed on a background thread so the UI
+//! never waits. Answers "why not RK5, RK6?": more stages buy less and less per evaluation, and
+//! all methods meet the round-off floor.
+
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc::{Receiver, channel};
+use std::time::Instant;
+
+use egui_plot::{Line, Points};
+use serde::{Deserialize, Serialize};
+
+use super::convergence::log_axes_plot;
+use super::methods::{MethodId, fixed_path, steps_for};
+use super::problems::Field2;
+use super::style::{self, fmt_num};
+use super::{Param, SlideWidget};
+use crate::ode::Tableau;
+
+/// Snapshot tests set this: timings then come from a fixed cost per f-evaluation and the study
+/// runs on the calling thread, so pictures are reproducible. Live, time is measured.
+pub static DETERMINISTIC: AtomicBool = AtomicBool::new(false);
+
+/// Dormand–Prince 5(4), the fifth-order weights used as a fixed-step method (6 stages).
+pub fn dopri5_fixed() -> Tableau {
+    Tableau {
+        name: "RK5 (Dormand–Prince)".into(),
+        a: vec![
+            vec![0.0; 6],
+            vec![1.0 / 5.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+            vec![3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0],
+            vec![44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0, 0.0, 0.0, 0.0],
+            vec![
+                19372.0 / 6561.0,
+                -25360.0 / 2187.0,
+                64448.0 / 6561.0,
+                -212.0 / 729.0,
+                0.0,
+                0.0,
+            ],
+            vec![
+                9017.0 / 3168.0,
+                -355.0 / 33.0,
+                46732.0 / 5247.0,
+                49.0 / 176.0,
+                -5103.0 / 18656.0,
+                0.0,
+            ],
+        ],
+        b: vec![
+            35.0 / 384.0,
+            0.0,
+            500.0 / 1113.0,
+            125.0 / 192.0,
+            -2187.0 / 6784.0,
+            11.0 / 84.0,
+        ],
+        c: vec![0.0, 0.2, 0.3, 0.8, 8.0 / 9.0, 1.0],
+    }
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct WorkPrecisionSpec {
+    /// Integration interval length (the problem is the circle, exact solution known).
+    #[serde(default = "default_t_end")]
+    pub t_end: f64,
+    /// Steps sizes: h = h_max / 2^k, k = 0..levels.
+    #[serde(default = "default_levels")]
+    pub levels: usize,
+    #[serde(default = "yes")]
+    pub rk5: bool,
+}
+
+fn default_t_end() -> f64 {
+    10.0
+}
+fn default_levels() -> usize {
+    10
+}
+fn yes() -> bool {
+    true
+}
+
+/// One run: f-evaluations, seconds, global error.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sample {
+    pub f_evals: usize,
+    pub secs: f64,
+    pub error: f64,
+}
+
+/// The study for one method (pure; runs on any thread).
+pub fn study(spec: &WorkPrecisionSpec, tab: &Tableau) -> Vec<Sample> {
+    let sys = Field2::Circle.system();
+    let exact = Field2::Circle.exact([1.0, 0.0], spec.t_end).unwrap();
+    let h_max = 1.0;
+    (0..spec.levels.clamp(2, 16))
+        .map(|k| {
+            let n = steps_for(0.0, spec.t_end, h_max / 2f64.powi(k as i32), 1 << 22);
+            let h = spec.t_end / n as f64;
+            let start = Instant::now();
+            let mut reps = 0;
+            let p = loop {
+                let p = fixed_path(&sys, tab.clone(), 0.0, &[1.0, 0.0], h, n, 1e12);
+                reps += 1;
+                // repeat short runs so the clock resolves them
+                if start.elapsed().as_secs_f64() > 2e-3 || reps >= 50 {
+                    break p;
+                }
+            };
+            let secs = if DETERMINISTIC.load(Ordering::Relaxed) {
+                p.f_evals as f64 * 50e-9
+            } else {
+                start.elapsed().as_secs_f64() / reps as f64
+            };
+            let e = p.last();
+            let error = if p.diverged_at.is_some() {
+                f64::INFINITY
+            } else {
+                (e[0] - exact[0]).hypot(e[1] - exact[1])
+            };
+            Sample {
+                f_evals: p.f_evals,
+                secs,
+                error,
+            }
+        })
+        .collect()
+}
+
+type Results = Vec<(String, egui::Color32, Vec<Sample>)>;
+
+pub struct WorkPrecision {
+    pub spec: WorkPrecisionSpec,
+    initial: WorkPrecisionSpec,
+    computed_for: Option<WorkPrecisionSpec>,
+    results: Results,
+    pending: Option<Receiver<(String, egui::Color32, Vec<Sample>)>>,
+}
+
+impl WorkPrecision {
+    pub fn new(spec: WorkPrecisionSpec) -> Self {
+        Self {
+            initial: spec.clone(),
+            spec,
+            computed_for: None,
+            results: Vec::new(),
+            pending: None,
+        }
+    }
+
+    fn methods(&self) -> Vec<(String, egui::Color32, Tableau)> {
+        let mut v: Vec<_> = [MethodId::Euler, MethodId::Midpoint, MethodId::Rk4]
+            .iter()
+            .map(|m| {
+                (
+                    m.name().to_owned(),
+                    style::method_color(*m),
+                    m.tableau().unwrap(),
+                )
+            })
+            .collect();
+        if self.spec.rk5 {
+            v.push(("RK5".into(), style::DOPRI, dopri5_fixed()));
+        }
+        v
+    }
+
+    /// Starts the study for the current spec (in the background unless DETERMINISTIC).
+    fn start(&mut self, ctx: &egui::Context) {
+        self.computed_for = Some(self.spec.clone());
+        self.results.clear();
+        let jobs = self.methods();
+        let spec = self.spec.clone();
+        if DETERMINISTIC.load(Ordering::Relaxed) {
+            self.results = jobs
+                .into_iter()
+                .map(|(n, c, t)| (n, c, study(&spec, &t)))
+                .collect();
+            self.pending = None;
+            return;
+        }
+        let (tx, rx) = channel();
+        let ctx = ctx.clone();
+        // Dropping the receiver (spec changed again) makes the next send fail: the thread stops.
+        std::thread::spawn(move || {
+            for (name, color, tab) in jobs {
+                let r = study(&spec, &tab);
+                if tx.send((name, color, r)).is_err() {
+                    return;
+                }
+                ctx.request_repaint();
+            }
+        });
+        self.pending = Some(rx);
+    }
+
+    /// True while the background study is still running.
+    pub fn busy(&self) -> bool {
+        self.pending.is_some()
+    }
+
+    fn poll(&mut self) {
+        if let Some(rx) = &self.pending {
+            loop {
+                match rx.try_recv() {
+                    Ok(r) => self.results.push(r),
+                    Err(std::sync::mpsc::TryRecvError::Empty) => break,
+                    Err(std::sync::mpsc::TryRecvError::Disconnected) => {
+                        self.pending = None;
+                        break;
+                    }
+                }
+            }
+        }
+    }
+}
+
+impl SlideWidget for WorkPrecision {
+    fn ui(&mut self, ui: &mut egui::Ui) {
+        style::projector_text(ui);
+        ui.horizontal(|ui| {
+            ui.add(egui::Slider::new(&mut self.spec.levels, 3..=14).text("step sizes"));
+            ui.checkbox(
+                &mut self.spec.rk5,
+                egui::RichText::new("RK5").color(style::DOPRI).strong(),
+            );
+            if self.busy() {
+                ui.spinner();
+                ui.label("computing in the background…");
+            }
+        });
+        if self.computed_for.as_ref() != Some(&self.spec) {
+            self.start(ui.ctx());
+        }
+        self.poll();
+        ui.horizontal(|ui| {
+            ui.label(format!(
+                "circle over t ∈ [0, {}]; best error per method:",
+                fmt_num(self.spec.t_end)
+            ));
+            for (name, color, s) in &self.results {
+                let best = s.iter().map(|s| s.error).fold(f64::INFINITY, f64::min);
+                ui.colored_label(
+                    *color,
+                    egui::RichText::new(format!("{name} {}", fmt_num(best))).strong(),
+                );
+            }
+        });
+        let half = (ui.available_width() - ui.spacing().item_spacing.x) / 2.0;
+        let height = ui.available_height();
+        let results = &self.results;
+        ui.horizontal_top(|ui| {
+            for (id, xlab, by_time) in [
+                ("wp-evals", "f evaluations", false),
+                ("wp-time", "seconds", true),
+            ] {
+                ui.allocate_ui(egui::vec2(half, height), |ui| {
+                    log_axes_plot(id, xlab, "error")
+                        .width(half)
+                        .height(height)
+                        .show(ui, |p| {
+                            for (name, color, samples) in results {
+                                let v: Vec<[f64; 2]> = samples
+                                    .iter()
+                                    .filter(|s| s.error.is_finite() && s.error > 0.0)
+                                    .map(|s| {
+                                        [
+                                            if by_time { s.secs } else { s.f_evals as f64 }.log10(),
+                                            s.error.log10().max(-16.0),
+                                        ]
+                                    })
+                                    .collect();
+                                p.line(
+                                    Line::new(name.clone(), v.clone())
+                                        .color(*color)
+                                        .width(style::PATH_WIDTH),
+                                );
+                                p.points(Points::new(name.clone(), v).color(*color).radius(4.5));
+                            }
+                        });
+                });
+            }
+        });
+    }
+
+    fn params(&mut self) -> Vec<Param<'_>> {
+        vec![
+            Param::usize("levels", "step sizes", &mut self.spec.levels, 3, 14),
+            Param::bool("rk5", "RK5", &mut self.spec.rk5),
+        ]
+    }
+
+    spec_plumbing!(WorkPrecision);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rk5_is_fifth_order_and_beats_rk4_per_evaluation_at_high_accuracy() {
+        let spec = WorkPrecisionSpec {
+            t_end: 10.0,
+            levels: 6,
+            rk5: true,
+        };
+        let rk5 = study(&spec, &dopri5_fixed());
+        let order = (rk5[2].error / rk5[3].error).log2();
+        assert!((order - 5.0).abs() < 0.3, "{order}");
+        let rk4 = study(&spec, &Tableau::rk4());
+        // at ~the same work, RK5's error is smaller
+        assert!(rk5[3].error < rk4[3].error);
+    }
+
+    #[test]
+    fn background_study_delivers_without_blocking_the_frame() {
+        let ctx = egui::Context::default();
+        let mut w = WorkPrecision::new(WorkPrecisionSpec {
+            t_end: 10.0,
+            levels: 12,
+            rk5: true,
+        });
+        let t = Instant::now();
+        w.start(&ctx);
+        let start_cost = t.elapsed();
+        assert!(w.busy());
+        while w.busy() {
+            w.poll();
+            std::thread::sleep(std::time::Duration::from_millis(5));
+        }
+        assert_eq!(w.results.len(), 4);
+        // the study itself is far longer than starting it (no assertion on wall time beyond
+        // "starting returned before any result existed")
+        let _ = start_cost;
+    }
+}

@@ -1,0 +1,287 @@
+//! The renderer on whatever adapter exists (Mesa lavapipe in CI): every shader validates, a
+//! broken one is reported at its line and the old pipeline keeps drawing, and golden images of
+//! the default scene and each debug view match committed PNGs within a tolerance that a
+//! visible change (shadows off) exceeds.
+//!
+//! Record new goldens with `UPDATE_SNAPSHOTS=1 cargo test --test render_scene`.
+
+use std::path::{Path, PathBuf};
+
+use lectern::render::{DebugView, Headless, shaders};
+use lectern::scene;
+
+const SIZE: (u32, u32) = (320, 180);
+
+fn headless(shader_dir: &Path) -> Headless {
+    let s = scene::load_scene(Path::new(scene::DEFAULT_SCENE)).unwrap();
+    Headless::new(s, shader_dir).unwrap()
+}
+
+/// Differences between two images: the fraction of pixels with any channel off by more than
+/// `PIXEL_TOL`, and the mean absolute channel difference (0–255).
+fn diff(a: &image::RgbaImage, b: &image::RgbaImage) -> (f64, f64) {
+    assert_eq!(a.dimensions(), b.dimensions());
+    let mut off = 0usize;
+    let mut sum = 0u64;
+    for (p, q) in a.pixels().zip(b.pixels()) {
+        let d = (0..3).map(|c| p[c].abs_diff(q[c])).max().unwrap();
+        sum += (0..3).map(|c| p[c].abs_diff(q[c]) as u64).sum::<u64>();
+        if d > PIXEL_TOL {
+            off += 1;
+        }
+    }
+    let n = (a.width() * a.height()) as f64;
+    (off as f64 / n, sum as f64 / (3.0 * n))
+}
+
+/// A channel may differ by this much (software rasterisers differ in the last bits).
+const PIXEL_TOL: u8 = 6;
+/// At most this fraction of pixels may exceed PIXEL_TOL …
+const MAX_OFF_FRACTION: f64 = 0.005;
+/// … and the mean channel difference may be at most this.
+const MAX_MEAN_DIFF: f64 = 0.5;
+
+fn within_tolerance(a: &image::RgbaImage, b: &image::RgbaImage) -> bool {
+    let (off, mean) = diff(a, b);
+    off <= MAX_OFF_FRACTION && mean <= MAX_MEAN_DIFF
+}
+
+fn golden(name: &str, img: &image::RgbaImage) {
+    let path = PathBuf::from(format!("tests/snapshots/scene-{name}.png"));
+    if std::env::var_os("UPDATE_SNAPSHOTS").is_some() || !path.exists() {
+        img.save(&path).unwrap();
+        assert!(
+            std::env::var_os("UPDATE_SNAPSHOTS").is_some(),
+            "recorded new golden {}; look at it and rerun",
+            path.display()
+        );
+        return;
+    }
+    let want = image::open(&path).unwrap().to_rgba8();
+    let (off, mean) = diff(img, &want);
+    if !(off <= MAX_OFF_FRACTION && mean <= MAX_MEAN_DIFF) {
+        let got = path.with_extension("new.png");
+        img.save(&got).unwrap();
+        panic!(
+            "{name}: {:.3}% pixels off, mean diff {mean:.3} (see {})",
+            off * 100.0,
+            got.display()
+        );
+    }
+}
+
+#[test]
+fn every_shader_validates_with_naga() {
+    let files = shaders::list(Path::new("shaders"));
+    assert!(files.len() >= 9, "{files:?}");
+    for f in &files {
+        assert_eq!(shaders::check_file(f), vec![], "{}", f.display());
+        // include-only files are checked through their users; entry files fully
+        let src = shaders::load(f).unwrap();
+        assert!(
+            src.text.lines().next().unwrap().starts_with("// "),
+            "{}: header comment",
+            f.display()
+        );
+    }
+}
+
+fn copy_shaders(dir: &Path) {
+    for f in shaders::list(Path::new("shaders")) {
+        std::fs::copy(&f, dir.join(f.file_name().unwrap())).unwrap();
+    }
+}
+
+fn break_line(path: &Path, line: usize) {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines: Vec<String> = text.lines().map(String::from).collect();
+    lines[line - 1] = "    let broken = ;".into();
+    std::fs::write(path, lines.join("\n")).unwrap();
+}
+
+#[test]
+fn a_broken_shader_copy_reports_its_file_and_line() {
+    let dir = tempfile::tempdir().unwrap();
+    copy_shaders(dir.path());
+    // a line inside a function body of each entry shader
+    for name in ["water.wgsl", "pbr.wgsl", "sky.wgsl", "tonemap.wgsl"] {
+        let path = dir.path().join(name);
+        let original = std::fs::read_to_string(&path).unwrap();
+        let line = original
+            .lines()
+            .position(|l| l.trim_start().starts_with("let "))
+            .unwrap()
+            + 1;
+        break_line(&path, line);
+        let d = shaders::check_file(&path);
+        assert_eq!(d.len(), 1, "{name}");
+        assert_eq!(
+            (d[0].file.as_path(), d[0].line),
+            (path.as_path(), line),
+            "{}",
+            d[0]
+        );
+        assert!(d[0].col > 0);
+        std::fs::write(&path, original).unwrap();
+    }
+    // an error in an included file is reported in that file, at its own line
+    let common = dir.path().join("common.wgsl");
+    let line = std::fs::read_to_string(&common)
+        .unwrap()
+        .lines()
+        .position(|l| l.contains("let d = w.dir_k_amp.xy;"))
+        .unwrap()
+        + 1;
+    break_line(&common, line);
+    let d = shaders::check_file(&dir.path().join("water.wgsl"));
+    assert_eq!(
+        (d[0].file.as_path(), d[0].line),
+        (common.as_path(), line),
+        "{}",
+        d[0]
+    );
+}
+
+#[test]
+fn hot_reload_keeps_the_old_pipeline_on_error_and_swaps_in_the_fix() {
+    let dir = tempfile::tempdir().unwrap();
+    copy_shaders(dir.path());
+    let mut h = headless(dir.path());
+    h.sim.set_time(1.0);
+    let before = h.render(SIZE).unwrap();
+
+    // 1. a syntax error: naga rejects it, the old pipeline keeps drawing
+    let water = dir.path().join("water.wgsl");
+    let good = std::fs::read_to_string(&water).unwrap();
+    let bad_line = good
+        .lines()
+        .position(|l| l.contains("let color = mix("))
+        .unwrap()
+        + 1;
+    break_line(&water, bad_line);
+    assert!(h.renderer.reload_shaders(std::slice::from_ref(&water)));
+    let errors: Vec<String> = h
+        .renderer
+        .shader_errors()
+        .iter()
+        .map(|d| d.to_string())
+        .collect();
+    assert_eq!(errors.len(), 1);
+    assert!(
+        errors[0].starts_with(&format!("{}:{bad_line}:", water.display())),
+        "{}",
+        errors[0]
+    );
+    let during = h.render(SIZE).unwrap();
+    assert!(
+        within_tolerance(&before, &during),
+        "the old water pipeline must stay in use"
+    );
+
+    // 2. valid WGSL that fails at pipeline creation (entry point renamed): caught by the
+    //    error scope, not by a panic
+    let tonemap = dir.path().join("tonemap.wgsl");
+    let tm = std::fs::read_to_string(&tonemap).unwrap();
+    std::fs::write(&tonemap, tm.replace("fn fs_main(", "fn fs_renamed(")).unwrap();
+    h.renderer.reload_shaders(std::slice::from_ref(&tonemap));
+    assert_eq!(h.renderer.shader_errors().len(), 2);
+    assert!(
+        h.renderer
+            .shader_errors()
+            .iter()
+            .any(|d| d.file == tonemap && d.message.contains("pipeline creation failed"))
+    );
+    let still = h.render(SIZE).unwrap();
+    assert!(within_tolerance(&before, &still));
+    std::fs::write(&tonemap, tm).unwrap();
+    h.renderer.reload_shaders(std::slice::from_ref(&tonemap));
+
+    // 3. the fix (a visible one: red water) swaps in
+    std::fs::write(
+        &water,
+        good.replace(
+            "let color = mix(refracted, reflected, fresnel) + glint;",
+            "let color = vec3f(1.0, 0.0, 0.0);",
+        ),
+    )
+    .unwrap();
+    h.renderer.reload_shaders(std::slice::from_ref(&water));
+    assert!(h.renderer.shader_errors().is_empty());
+    let after = h.render(SIZE).unwrap();
+    assert!(
+        !within_tolerance(&before, &after),
+        "the new pipeline must be in use"
+    );
+    let red = after
+        .pixels()
+        .filter(|p| p[0] > 200 && p[1] < 30 && p[2] < 30)
+        .count();
+    assert!(
+        red > (SIZE.0 * SIZE.1 / 4) as usize,
+        "water covers much of the frame: {red}"
+    );
+}
+
+#[test]
+fn golden_images_of_the_default_scene_and_debug_views() {
+    let mut h = headless(Path::new("shaders"));
+    for t in [0.0, 2.5] {
+        h.sim.set_time(t);
+        let img = h.render(SIZE).unwrap();
+        golden(&format!("t{t}"), &img);
+    }
+    h.sim.set_time(2.5);
+    for (view, name) in [
+        (DebugView::ShadowMap, "shadow-map"),
+        (DebugView::Normals, "normals"),
+        (DebugView::EnvCube, "env-cube"),
+    ] {
+        h.settings.debug_view = view;
+        let img = h.render(SIZE).unwrap();
+        golden(name, &img);
+    }
+}
+
+#[test]
+fn rendering_is_deterministic_and_toggling_shadows_exceeds_the_tolerance() {
+    let mut h = headless(Path::new("shaders"));
+    h.sim.set_time(2.5);
+    let a = h.render(SIZE).unwrap();
+    let b = h.render(SIZE).unwrap();
+    assert_eq!(diff(&a, &b), (0.0, 0.0), "same frame, same bytes");
+    h.settings.shadows = false;
+    let c = h.render(SIZE).unwrap();
+    let (off, mean) = diff(&a, &c);
+    assert!(
+        !within_tolerance(&a, &c),
+        "shadows off must change the image: {off} {mean}"
+    );
+    // and each other technique toggle is visible too
+    h.settings.shadows = true;
+    for toggle in 0..4 {
+        let mut s = h.settings;
+        match toggle {
+            0 => s.env_map = false,
+            1 => s.normal_maps = false,
+            2 => s.brdf = false,
+            _ => s.fresnel = false,
+        }
+        let saved = std::mem::replace(&mut h.settings, s);
+        let img = h.render(SIZE).unwrap();
+        h.settings = saved;
+        assert!(
+            !within_tolerance(&a, &img),
+            "toggle {toggle} made no visible difference"
+        );
+    }
+}
+
+#[test]
+fn time_moves_the_waves_and_fish() {
+    let mut h = headless(Path::new("shaders"));
+    h.sim.set_time(0.0);
+    let a = h.render(SIZE).unwrap();
+    h.sim.set_time(0.5);
+    let b = h.render(SIZE).unwrap();
+    assert!(!within_tolerance(&a, &b));
+}

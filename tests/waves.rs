@@ -1,0 +1,126 @@
+//! The Gerstner sum on the CPU: heights at world points invert the horizontal displacement,
+//! the analytic normal matches finite differences, a calm sea is flat.
+
+use glam::{DVec2, DVec3};
+use lectern::waves::{GerstnerWave, WaveSum};
+
+fn sea() -> WaveSum {
+    WaveSum::new(
+        vec![
+            GerstnerWave {
+                direction: [1.0, 0.0],
+                wavelength: 9.0,
+                amplitude: 0.35,
+                steepness: 0.8,
+                speed: 3.7,
+            },
+            GerstnerWave {
+                direction: [0.6, 0.8],
+                wavelength: 4.0,
+                amplitude: 0.12,
+                steepness: 0.7,
+                speed: 2.5,
+            },
+            GerstnerWave {
+                direction: [-0.3, 1.0],
+                wavelength: 2.3,
+                amplitude: 0.05,
+                steepness: 0.5,
+                speed: 1.9,
+            },
+        ],
+        0.5,
+    )
+}
+
+#[test]
+fn height_at_a_world_point_is_on_the_displaced_surface() {
+    let w = sea();
+    assert!(w.horizontal_steepness() < 1.0);
+    for k in 0..200 {
+        let rest = DVec2::new(
+            (k as f64 * 0.731).sin() * 20.0,
+            (k as f64 * 1.37).cos() * 20.0,
+        );
+        let t = k as f64 * 0.1;
+        let p = w.surface_point(rest, t);
+        let h = w.height(DVec2::new(p.x, p.z), t);
+        assert!(
+            (h - p.y).abs() < 1e-4,
+            "at {rest}: height {h} vs surface {}",
+            p.y
+        );
+        assert!(h >= w.lowest_level() && h <= w.highest_level());
+    }
+}
+
+#[test]
+fn analytic_normal_matches_finite_differences() {
+    let w = sea();
+    let e = 1e-5;
+    for k in 0..50 {
+        let rest = DVec2::new(k as f64 * 0.37, -(k as f64) * 0.21);
+        let t = 1.3 + k as f64 * 0.05;
+        let dx = (w.surface_point(rest + DVec2::X * e, t)
+            - w.surface_point(rest - DVec2::X * e, t))
+            / (2.0 * e);
+        let dz = (w.surface_point(rest + DVec2::Y * e, t)
+            - w.surface_point(rest - DVec2::Y * e, t))
+            / (2.0 * e);
+        let numeric = dz.cross(dx).normalize();
+        let n = w.normal(rest, t);
+        assert!((n - numeric).length() < 1e-6, "{n} vs {numeric}");
+        assert!(n.y > 0.0);
+    }
+}
+
+#[test]
+fn a_single_wave_normal_is_gpu_gems_eq_12() {
+    let w = WaveSum::new(vec![sea().waves[0].clone()], 0.0);
+    let (k, a, q_a) = (
+        std::f64::consts::TAU / 9.0,
+        0.35f64,
+        0.8 / (std::f64::consts::TAU / 9.0),
+    );
+    for i in 0..20 {
+        let rest = DVec2::new(i as f64 * 0.4, 0.0);
+        let theta = k * rest.x - k * 3.7 * 0.7;
+        let gems = DVec3::new(-k * a * theta.cos(), 1.0 - q_a * k * theta.sin(), 0.0).normalize();
+        assert!((w.normal(rest, 0.7) - gems).length() < 1e-6);
+    }
+}
+
+#[test]
+fn crests_move_along_the_wave_direction() {
+    let w = WaveSum::new(
+        vec![GerstnerWave {
+            direction: [0.0, 1.0],
+            wavelength: 10.0,
+            amplitude: 0.2,
+            steepness: 0.0,
+            speed: 2.0,
+        }],
+        0.0,
+    );
+    // the crest at z = 2.5 (θ = π/2) at t = 0 is at z = 4.5 one second later
+    assert!((w.height(DVec2::new(0.0, 2.5), 0.0) - 0.2).abs() < 1e-6);
+    assert!((w.height(DVec2::new(0.0, 4.5), 1.0) - 0.2).abs() < 1e-6);
+}
+
+#[test]
+fn calm_water_is_flat() {
+    let w = WaveSum::calm(-1.0);
+    assert_eq!(w.height(DVec2::new(3.0, 4.0), 10.0), -1.0);
+    assert_eq!(w.normal_at(DVec2::new(3.0, 4.0), 10.0), DVec3::Y);
+    let junk = WaveSum::new(
+        vec![GerstnerWave {
+            direction: [0.0, 0.0],
+            wavelength: 0.0,
+            amplitude: f32::NAN,
+            steepness: 5.0,
+            speed: f32::INFINITY,
+        }],
+        0.0,
+    );
+    assert!(junk.height(DVec2::new(1.0, 1.0), 1.0).is_finite());
+}

@@ -1,0 +1,273 @@
+//! Snapshot tests of every plot widget in a few parameter states, rendered headless with
+//! egui_kittest on the wgpu software adapter and compared with `tests/snapshots/widget-*.png`.
+//!
+//! Regenerate after an intended change (then LOOK at the PNGs before committing):
+//!     UPDATE_SNAPSHOTS=1 cargo test --test widgets
+
+use std::sync::atomic::Ordering;
+
+use egui_kittest::{Harness, SnapshotOptions};
+use lectern::deck::parse_deck;
+use lectern::widgets::{SlideWidget, WidgetSpec, params, work_precision};
+
+const SIZE: egui::Vec2 = egui::vec2(1100.0, 620.0);
+
+/// Per-pixel colour tolerance: absorbs GL vs Vulkan rasterisation differences (1/255), not a
+/// moved line (see `a_different_h_does_not_match_its_snapshot`).
+fn options() -> SnapshotOptions {
+    SnapshotOptions::new().threshold(0.6).max_failed_pixels(8)
+}
+
+/// A widget from a RON spec, as a deck file would write it.
+fn widget(ron_spec: &str) -> Box<dyn SlideWidget> {
+    let spec: WidgetSpec = ron::from_str(ron_spec).unwrap_or_else(|e| panic!("{ron_spec}: {e}"));
+    spec.instantiate()
+}
+
+fn harness(mut w: Box<dyn SlideWidget>) -> Harness<'static> {
+    work_precision::DETERMINISTIC.store(true, Ordering::Relaxed);
+    let mut h = Harness::builder()
+        .with_size(SIZE)
+        .with_theme(egui::Theme::Light)
+        .wgpu()
+        .build_ui(move |ui| {
+            egui::Frame::new()
+                .fill(egui::Color32::WHITE)
+                .inner_margin(12.0)
+                .show(ui, |ui| {
+                    ui.set_min_size(ui.available_size());
+                    w.ui(ui);
+                });
+        });
+    h.run_steps(3);
+    h
+}
+
+fn render(ron_spec: &str) -> image::RgbaImage {
+    harness(widget(ron_spec)).render().expect("render")
+}
+
+fn check(name: &str, ron_spec: &str) {
+    harness(widget(ron_spec)).snapshot_options(name, &options());
+}
+
+const SLOPE_1D: &str = "SlopeField((field: OneD(Forced), start: (0.0, 1.5), h: 0.5, t_end: 8.0, view: (0.0, 8.0, -1.5, 2.0)))";
+
+#[test]
+fn slope_field_states() {
+    check("widget-slope-field-1d-h0.5", SLOPE_1D);
+    check(
+        "widget-slope-field-1d-h1-rk4-only",
+        "SlopeField((field: OneD(Forced), start: (1.0, -1.0), h: 1.0, t_end: 8.0, view: (0.0, 8.0, -1.5, 2.0), euler: false, midpoint: false))",
+    );
+    check(
+        "widget-slope-field-phase-circle",
+        "SlopeField((field: Phase(Circle), start: (1.0, 0.0), h: 0.3, t_end: 6.2832, view: (-2.0, 2.0, -2.0, 2.0)))",
+    );
+    check(
+        "widget-slope-field-phase-vdp",
+        "SlopeField((field: Phase(VanDerPol(mu: 1.0)), start: (0.5, 0.0), h: 0.2, t_end: 12.0, view: (-3.0, 3.0, -3.0, 3.0), grid: 17))",
+    );
+}
+
+#[test]
+fn step_construction_states() {
+    check(
+        "widget-step-euler",
+        "StepConstruction((method: Euler, h: 1.5, stage: 2))",
+    );
+    check(
+        "widget-step-midpoint-half",
+        "StepConstruction((method: Midpoint, h: 1.5, stage: 2))",
+    );
+    check(
+        "widget-step-rk4-k2",
+        "StepConstruction((method: Rk4, h: 1.5, stage: 2))",
+    );
+    check(
+        "widget-step-rk4-full",
+        "StepConstruction((method: Rk4, h: 1.5, stage: 5))",
+    );
+}
+
+#[test]
+fn spiral_states() {
+    check("widget-spiral-h0.1", "Spiral((h: 0.1, turns: 3.0))");
+    check(
+        "widget-spiral-h0.5-euler-only",
+        "Spiral((h: 0.5, turns: 2.0, compare: false))",
+    );
+}
+
+#[test]
+fn neptune_states() {
+    check(
+        "widget-neptune-stable",
+        "Neptune((problem: Decay(lambda: -5.0), h: 0.3, t_end: 4.0, rk4: true))",
+    );
+    check(
+        "widget-neptune-diverged",
+        "Neptune((problem: Decay(lambda: -5.0), h: 0.45, t_end: 4.0, rk4: true))",
+    );
+    check(
+        "widget-neptune-oscillator",
+        "Neptune((problem: Oscillator, h: 0.5, t_end: 20.0, midpoint: true, rk4: true))",
+    );
+    // h = 1e9 is clamped, never a panic or NaN
+    check(
+        "widget-neptune-huge-h",
+        "Neptune((problem: Decay(lambda: -5.0), h: 1e9, t_end: 4.0))",
+    );
+}
+
+#[test]
+fn taylor_states() {
+    check(
+        "widget-taylor-sin-4",
+        "Taylor((function: Sin, a: 0.0, order: 4))",
+    );
+    check(
+        "widget-taylor-log1p-6",
+        "Taylor((function: Log1p, a: 0.0, order: 6, range: (-0.95, 3.0)))",
+    );
+}
+
+#[test]
+fn convergence_states() {
+    check(
+        "widget-convergence",
+        "Convergence((field: Forced, levels: 8))",
+    );
+    check(
+        "widget-convergence-typo",
+        "Convergence((field: Forced, levels: 8, typo: true))",
+    );
+}
+
+#[test]
+fn work_precision_states() {
+    check(
+        "widget-work-precision",
+        "WorkPrecision((t_end: 10.0, levels: 10, rk5: true))",
+    );
+}
+
+#[test]
+fn stability_states() {
+    check("widget-stability", "Stability(())");
+    check(
+        "widget-stability-deck-tableau",
+        r#"Stability((methods: [Euler, Rk4], tableaux: [(name: "Ralston", a: [[0.0, 0.0], [0.6666666666666666, 0.0]], b: [0.25, 0.75], c: [0.0, 0.6666666666666666])], lambda: Some((0.0, 1.0)), h: 2.5))"#,
+    );
+}
+
+#[test]
+fn rigid_body_states() {
+    check(
+        "widget-rigid-body-t0",
+        "RigidBody((t: 0.0, playing: false))",
+    );
+    check(
+        "widget-rigid-body-t12",
+        "RigidBody((t: 12.0, playing: false, n: 8))",
+    );
+}
+
+/// Proves the snapshots bite: the committed slope-field picture for h = 0.5 must not match a
+/// rendering with h = 0.45, with the same tolerance the snapshot tests use; and, as a control,
+/// the same h must match (so the comparison is not simply always failing).
+#[test]
+fn a_different_h_does_not_match_its_snapshot() {
+    let committed = image::open(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/snapshots/widget-slope-field-1d-h0.5.png"
+    ))
+    .expect("run the snapshot tests first")
+    .to_rgba8();
+    let same = render(SLOPE_1D);
+    let other = render(&SLOPE_1D.replace("h: 0.5", "h: 0.45"));
+    let differing = |img: &image::RgbaImage| {
+        assert_eq!(img.dimensions(), committed.dimensions());
+        img.pixels()
+            .zip(committed.pixels())
+            .filter(|(a, b)| a.0.iter().zip(b.0.iter()).any(|(x, y)| x.abs_diff(*y) > 16))
+            .count()
+    };
+    assert!(
+        differing(&same) <= 8,
+        "control: same h should match ({} px differ)",
+        differing(&same)
+    );
+    assert!(
+        differing(&other) > 200,
+        "h = 0.45 matched the h = 0.5 snapshot: the tests would not bite"
+    );
+}
+
+/// Every widget exposes its tweakable values by stable id; they survive a "reload" (a fresh
+/// instance) through snapshot/restore, are written back through `spec()`, and `reset` undoes
+/// them.
+#[test]
+fn params_round_trip_through_reload_and_reset() {
+    let deck = parse_deck(
+        include_str!("../slides/lecture.ron"),
+        std::path::Path::new("lecture.ron"),
+    )
+    .unwrap();
+    let specs: Vec<WidgetSpec> = deck
+        .slides
+        .iter()
+        .flat_map(|s| s.body.iter())
+        .flat_map(|b| match b {
+            lectern::deck::Block::Widget(w) => vec![w.clone()],
+            lectern::deck::Block::Columns(cols) => cols
+                .iter()
+                .flatten()
+                .filter_map(|b| match b {
+                    lectern::deck::Block::Widget(w) => Some(w.clone()),
+                    _ => None,
+                })
+                .collect(),
+            _ => vec![],
+        })
+        .collect();
+    let kinds: std::collections::BTreeSet<_> = specs.iter().map(|s| s.kind()).collect();
+    assert_eq!(kinds.len(), 9, "the deck shows all nine widgets: {kinds:?}");
+    for spec in specs {
+        let mut w = spec.instantiate();
+        let ids: Vec<&str> = w.params().iter().map(|p| p.id).collect();
+        assert!(!ids.is_empty(), "{} has no params", spec.kind());
+        let mut uniq = ids.clone();
+        uniq.dedup();
+        assert_eq!(ids.len(), uniq.len());
+        // tweak every value
+        for mut p in w.params() {
+            let v = match p.get() {
+                params::ParamSnapshot::F64(x) => params::ParamSnapshot::F64(x * 0.9 + 0.01),
+                params::ParamSnapshot::Bool(b) => params::ParamSnapshot::Bool(!b),
+                params::ParamSnapshot::Usize(n) => params::ParamSnapshot::Usize(n + 1),
+            };
+            p.set(v).unwrap();
+            assert!(p.set(params::ParamSnapshot::F64(f64::NAN)).is_err());
+        }
+        let saved = params::snapshot(w.as_mut());
+        let tweaked_spec = w.spec();
+        assert_ne!(
+            tweaked_spec,
+            spec,
+            "{}: tweaks must reach spec()",
+            spec.kind()
+        );
+        let mut reloaded = spec.instantiate();
+        params::restore(reloaded.as_mut(), &saved);
+        assert_eq!(reloaded.spec(), tweaked_spec, "{}", spec.kind());
+        // and written back to RON, it parses to the same spec
+        let ron_text = ron::to_string(&tweaked_spec).unwrap();
+        assert_eq!(
+            ron::from_str::<WidgetSpec>(&ron_text).unwrap(),
+            tweaked_spec
+        );
+        reloaded.reset();
+        assert_eq!(reloaded.spec(), spec, "{}: reset", spec.kind());
+    }
+}
