@@ -93,15 +93,7 @@ impl LecternApp {
     pub fn frame_ui(&mut self, ui: &mut egui::Ui) {
         self.pump_reload();
         let ctx = ui.ctx().clone();
-        let typing = matches!(self.overlay, Overlay::Goto(_));
-        let actions = ctx.input_mut(|i| {
-            let acts = keys::actions(&i.events, typing);
-            i.events.retain(|e| !keys::is_handled(e, typing));
-            acts
-        });
-        for a in actions {
-            self.apply(a, &ctx);
-        }
+        self.handle_keys(&ctx);
 
         let deck = self.session.deck();
         let palette = Palette::of(deck.theme);
@@ -143,6 +135,25 @@ impl LecternApp {
                 self.toast = None;
             }
         }
+    }
+
+    /// Takes the keys the app handles out of this frame's input (so slide widgets never see
+    /// them) and applies them one by one: after `G` the digits that follow in the same frame
+    /// belong to the number, not to bookmarks.
+    fn handle_keys(&mut self, ctx: &egui::Context) {
+        let events = ctx.input(|i| i.events.clone());
+        let mut handled = Vec::with_capacity(events.len());
+        for event in &events {
+            let typing = matches!(self.overlay, Overlay::Goto(_));
+            handled.push(keys::is_handled(event, typing));
+            for action in keys::actions(std::slice::from_ref(event), typing) {
+                self.apply(action, ctx);
+            }
+        }
+        ctx.input_mut(|i| {
+            let mut flags = handled.into_iter();
+            i.events.retain(|_| !flags.next().unwrap_or(false));
+        });
     }
 
     fn say(&mut self, ctx: &egui::Context, message: impl Into<String>) {
