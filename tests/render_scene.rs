@@ -122,6 +122,14 @@ fn a_broken_shader_copy_reports_its_file_and_line() {
             d[0]
         );
         assert!(d[0].col > 0);
+        // naga's excerpt shows the file's own line numbers, not those of the expanded text
+        let here = format!("{}:{line}:", path.display());
+        assert!(d[0].message.contains(&here), "{}", d[0].message);
+        assert!(
+            d[0].message.contains(&format!("{line} │")),
+            "{}",
+            d[0].message
+        );
         std::fs::write(&path, original).unwrap();
     }
     // an error in an included file is reported in that file, at its own line
