@@ -293,3 +293,23 @@ fn time_moves_the_waves_and_fish() {
     let b = h.render(SIZE).unwrap();
     assert!(!within_tolerance(&a, &b));
 }
+
+#[test]
+fn ten_thousand_fish_grow_the_instance_buffer_and_the_water_grid_follows_live_edits() {
+    let mut h = headless(Path::new("shaders"));
+    h.sim.set_time(0.2);
+    let a = h.render(SIZE).unwrap();
+    let before = h.renderer.fish_capacity();
+    assert!(before >= h.sim.fish_count() && before < 10_000);
+    h.sim.scene.school.count = 12_000;
+    h.sim.step_once();
+    let b = h.render(SIZE).unwrap();
+    assert_eq!(h.sim.fish_count(), 12_000);
+    assert!(h.renderer.fish_capacity() >= 12_000, "the buffer grew");
+    assert!(!within_tolerance(&a, &b), "four times the fish must show");
+    // a coarser water grid (live slider) is rebuilt, and drawn without a wgpu error
+    let n = h.renderer.water_index_count();
+    h.sim.scene.water.resolution = 16;
+    h.render(SIZE).unwrap();
+    assert!(h.renderer.water_index_count() < n / 10);
+}

@@ -357,6 +357,8 @@ impl SceneView {
         }
         ui.separator();
         ui.heading("Waves");
+        ui.add(egui::Slider::new(&mut sc.water.size, 4.0..=200.0).text("water patch (m)"));
+        ui.add(egui::Slider::new(&mut sc.water.resolution, 8..=512).text("grid vertices per side"));
         for (i, w) in sc.water.waves.iter_mut().enumerate() {
             ui.collapsing(format!("wave {}", i + 1), |ui| {
                 ui.add(egui::Slider::new(&mut w.amplitude, 0.0..=0.5).text("amplitude (m)"));
