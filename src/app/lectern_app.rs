@@ -35,6 +35,8 @@ pub struct LecternApp {
     toast: Option<(String, f64)>,
     /// The eframe wgpu state, for scene mode; `None` in tests without a window.
     pub render_state: Option<egui_wgpu::RenderState>,
+    /// Scene mode, made on the first Tab and kept alive (or why it could not be made).
+    pub scene: Option<Result<crate::render::SceneView, crate::diag::Diagnostic>>,
 }
 
 impl LecternApp {
@@ -47,6 +49,7 @@ impl LecternApp {
             black: false,
             toast: None,
             render_state: None,
+            scene: None,
         }
     }
 
@@ -114,7 +117,20 @@ impl LecternApp {
                     self.session.navigate(|nav, deck| nav.next(deck));
                 }
             }
-            (Mode::Scene, _) => overlays::scene_placeholder_ui(ui, &palette),
+            (Mode::Scene, _) => match (&self.render_state, &mut self.scene) {
+                (Some(rs), Some(Ok(view))) => view.ui(ui, rs),
+                (Some(rs), slot @ None) => {
+                    let path = std::path::Path::new(crate::scene::DEFAULT_SCENE);
+                    *slot = Some(crate::render::SceneView::new(rs, path).map_err(|e| {
+                        e.downcast::<crate::diag::Diagnostic>().unwrap_or_else(|e| {
+                            crate::diag::Diagnostic::whole_file(path, format!("{e:#}"))
+                        })
+                    }));
+                    ctx.request_repaint();
+                }
+                (_, Some(Err(e))) => overlays::error_notice_ui(ui, e, &palette),
+                (None, _) => overlays::scene_placeholder_ui(ui, &palette),
+            },
         }
         match &self.overlay {
             Overlay::Help => overlays::help_ui(ui, &palette),
@@ -247,7 +263,10 @@ impl LecternApp {
 }
 
 impl eframe::App for LecternApp {
-    fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
+    fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
+        if self.render_state.is_none() {
+            self.render_state = frame.wgpu_render_state().cloned();
+        }
         self.frame_ui(ui);
     }
 }

@@ -38,6 +38,11 @@ pub struct SceneView {
     pub paused: bool,
     step_once: bool,
     show_frame_time: bool,
+    /// the teaching panel as a floating window over the scene (a "controls" button opens it); a
+    /// presenter view that shows [`SceneView::controls_ui`] on its own screen sets
+    /// `controls_button` to false
+    pub controls_open: bool,
+    pub controls_button: bool,
     selected_material: usize,
     output: Option<Output>,
     last_instant: Option<Instant>,
@@ -75,6 +80,8 @@ impl SceneView {
             paused: false,
             step_once: false,
             show_frame_time: true,
+            controls_open: false,
+            controls_button: true,
             selected_material: 0,
             output: None,
             last_instant: None,
@@ -217,6 +224,27 @@ impl SceneView {
                 egui::Color32::from_rgb(255, 120, 100),
             );
         }
+        if self.controls_button {
+            let button = egui::Rect::from_min_size(
+                rect.right_top() + egui::vec2(-88.0, 8.0),
+                egui::vec2(80.0, 24.0),
+            );
+            if ui
+                .put(button, egui::Button::new("controls"))
+                .on_hover_text("scene controls")
+                .clicked()
+            {
+                self.controls_open = !self.controls_open;
+            }
+            let mut open = self.controls_open;
+            egui::Window::new("Scene controls")
+                .open(&mut open)
+                .default_pos(rect.right_top() + egui::vec2(-340.0, 40.0))
+                .default_width(320.0)
+                .vscroll(true)
+                .show(ui.ctx(), |ui| self.controls_ui(ui));
+            self.controls_open &= open;
+        }
         if !self.paused {
             ui.ctx().request_repaint();
         }
@@ -329,6 +357,8 @@ impl SceneView {
         }
         ui.separator();
         ui.heading("Waves");
+        ui.add(egui::Slider::new(&mut sc.water.size, 4.0..=200.0).text("water patch (m)"));
+        ui.add(egui::Slider::new(&mut sc.water.resolution, 8..=512).text("grid vertices per side"));
         for (i, w) in sc.water.waves.iter_mut().enumerate() {
             ui.collapsing(format!("wave {}", i + 1), |ui| {
                 ui.add(egui::Slider::new(&mut w.amplitude, 0.0..=0.5).text("amplitude (m)"));

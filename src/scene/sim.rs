@@ -18,7 +18,7 @@ use super::snapshot::{BodyPose, FrameSnapshot};
 
 /// A window that fell behind catches up by at most this many steps per frame, then drops the
 /// rest (no spiral of death when a frame takes long).
-const MAX_CATCH_UP_STEPS: u32 = 8;
+const MAX_CATCH_UP_STEPS: u32 = 3;
 
 pub struct SceneSim {
     pub scene: Scene,
