@@ -1,6 +1,7 @@
 //! The presenting app: one deck session, the slide (or scene) on screen, keys, overlays and
 //! hot reload. `frame_ui` is the whole frame, callable from eframe and from egui_kittest alike.
 
+use std::path::PathBuf;
 use std::time::Duration;
 
 use super::keys::{self, Action};
@@ -9,6 +10,7 @@ use super::slide_view::{DeckState, black_ui, slide_ui};
 use super::theme::Palette;
 use crate::deck::{DeckSession, Nav};
 use crate::reload::Reloaded;
+use crate::render::SceneView;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Mode {
@@ -35,21 +37,27 @@ pub struct LecternApp {
     toast: Option<(String, f64)>,
     /// The eframe wgpu state, for scene mode; `None` in tests without a window.
     pub render_state: Option<egui_wgpu::RenderState>,
-    /// Scene mode, made on the first Tab and kept alive (or why it could not be made).
-    pub scene: Option<Result<crate::render::SceneView, crate::diag::Diagnostic>>,
+    /// The water scene file scene mode shows.
+    pub scene_path: PathBuf,
+    /// Created on the first `Tab` (it needs the GPU); an error is shown in its place.
+    scene: Option<Result<SceneView, String>>,
+    /// `C`: the live controls (scene panel) on the audience screen.
+    show_controls: bool,
 }
 
 impl LecternApp {
     pub fn new(session: DeckSession) -> Self {
         Self {
-            session,
             states: DeckState::default(),
             mode: Mode::Slides,
             overlay: Overlay::None,
             black: false,
             toast: None,
             render_state: None,
+            scene_path: default_scene_path(&session),
+            session,
             scene: None,
+            show_controls: false,
         }
     }
 
@@ -117,20 +125,7 @@ impl LecternApp {
                     self.session.navigate(|nav, deck| nav.next(deck));
                 }
             }
-            (Mode::Scene, _) => match (&self.render_state, &mut self.scene) {
-                (Some(rs), Some(Ok(view))) => view.ui(ui, rs),
-                (Some(rs), slot @ None) => {
-                    let path = std::path::Path::new(crate::scene::DEFAULT_SCENE);
-                    *slot = Some(crate::render::SceneView::new(rs, path).map_err(|e| {
-                        e.downcast::<crate::diag::Diagnostic>().unwrap_or_else(|e| {
-                            crate::diag::Diagnostic::whole_file(path, format!("{e:#}"))
-                        })
-                    }));
-                    ctx.request_repaint();
-                }
-                (_, Some(Err(e))) => overlays::error_notice_ui(ui, e, &palette),
-                (None, _) => overlays::scene_placeholder_ui(ui, &palette),
-            },
+            (Mode::Scene, _) => self.scene_ui(ui, &palette),
         }
         match &self.overlay {
             Overlay::Help => overlays::help_ui(ui, &palette),
@@ -170,6 +165,34 @@ impl LecternApp {
             let mut flags = handled.into_iter();
             i.events.retain(|_| !flags.next().unwrap_or(false));
         });
+    }
+
+    /// Scene mode: the water scene (made on first use), with its panel when `C` is on.
+    fn scene_ui(&mut self, ui: &mut egui::Ui, palette: &Palette) {
+        let Some(rs) = self.render_state.clone() else {
+            overlays::scene_placeholder_ui(ui, palette, "Scene mode needs the window's GPU.");
+            return;
+        };
+        let path = self.scene_path.clone();
+        let scene = self
+            .scene
+            .get_or_insert_with(|| SceneView::new(&rs, &path).map_err(|e| format!("{e:#}")));
+        match scene {
+            Ok(view) => {
+                if self.show_controls {
+                    egui::Panel::right("lectern-scene-controls")
+                        .resizable(true)
+                        .show(ui, |ui| {
+                            egui::ScrollArea::vertical().show(ui, |ui| view.controls_ui(ui));
+                        });
+                }
+                view.ui(ui, &rs);
+            }
+            Err(e) => {
+                let msg = format!("The scene could not start: {e}");
+                overlays::scene_placeholder_ui(ui, palette, &msg);
+            }
+        }
     }
 
     fn say(&mut self, ctx: &egui::Context, message: impl Into<String>) {
@@ -248,8 +271,9 @@ impl LecternApp {
                 }
             }
             GotoDigit(_) | GotoBackspace | GotoConfirm => {}
-            TogglePresenter | ToggleControls | ResetTweaks | BookmarkStore(_)
-            | BookmarkRecall(_) | TimerPause | TimerReset | ExportSlide | WriteBack => {}
+            ToggleControls => self.show_controls = !self.show_controls,
+            TogglePresenter | ResetTweaks | BookmarkStore(_) | BookmarkRecall(_) | TimerPause
+            | TimerReset | ExportSlide | WriteBack => {}
         }
     }
 
@@ -259,6 +283,16 @@ impl LecternApp {
         } else {
             overlay
         };
+    }
+}
+
+/// `scenes/water.ron` beside the deck's folder (`slides/../scenes`), else under the current one.
+fn default_scene_path(session: &DeckSession) -> PathBuf {
+    let beside = session.folder().join("../scenes/water.ron");
+    if beside.exists() {
+        beside
+    } else {
+        PathBuf::from("scenes/water.ron")
     }
 }
 

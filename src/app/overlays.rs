@@ -246,8 +246,8 @@ pub fn toast_ui(ui: &mut egui::Ui, message: &str, palette: &Palette) {
         });
 }
 
-/// Scene mode, until the water scene is built: says so in the slides' style.
-pub fn scene_placeholder_ui(ui: &mut egui::Ui, palette: &Palette) {
+/// Scene mode when the scene cannot be shown: says why, in the slides' style.
+pub fn scene_placeholder_ui(ui: &mut egui::Ui, palette: &Palette, why: &str) {
     let rect = ui.available_rect_before_wrap();
     ui.painter()
         .rect_filled(rect, 0.0, Color32::from_rgb(0x0b, 0x1e, 0x2d));
@@ -263,7 +263,7 @@ pub fn scene_placeholder_ui(ui: &mut egui::Ui, palette: &Palette) {
     ui.painter().text(
         rect.center() + vec2(0.0, s * 0.6),
         Align2::CENTER_CENTER,
-        "The water scene is not built yet. Tab returns to the slides.",
+        format!("{why}  Tab returns to the slides."),
         egui::FontId::new(s * 0.45, theme::family_or_default(&ctx, theme::SERIF)),
         palette.dim,
     );

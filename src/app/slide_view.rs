@@ -16,6 +16,9 @@ use crate::widgets::{SlideWidget, WidgetSpec};
 #[derive(Default)]
 pub struct SlideState {
     pub(crate) widgets: HashMap<Vec<usize>, WidgetSlot>,
+    /// Problems found while drawing (a formula that does not typeset), from the last frame:
+    /// for the presenter's screen, never the audience's.
+    problems: Vec<String>,
 }
 
 pub(crate) struct WidgetSlot {
@@ -43,6 +46,17 @@ impl SlideState {
                 widget: spec.instantiate(),
             });
         slot.widget.as_mut()
+    }
+
+    pub(crate) fn note_problem(&mut self, problem: String) {
+        if !self.problems.contains(&problem) {
+            self.problems.push(problem);
+        }
+    }
+
+    /// Problems found while drawing the slide the last time (e.g. a formula with an error).
+    pub fn problems(&self) -> &[String] {
+        &self.problems
     }
 
     /// How many widgets are alive (for tests of the keep-alive rule).
@@ -117,6 +131,12 @@ pub fn slide_ui_with(
     options: SlideOptions,
 ) -> SlideResponse {
     theme::install_fonts(ui.ctx());
+    let fonts_ready = theme::fonts_installed(ui.ctx());
+    if !fonts_ready {
+        // Text was laid out earlier in this pass, so the fonts arrive with the next one: run it
+        // now rather than show (or snapshot) a frame in the wrong face.
+        ui.ctx().request_discard("lectern: slide fonts installed");
+    }
     let avail = ui.available_rect_before_wrap();
     let palette = Palette::of(deck.theme);
     let (canvas, scale) = fit_canvas(avail, deck.aspect.ratio());
@@ -133,7 +153,7 @@ pub fn slide_ui_with(
     );
     ui.advance_cursor_after_rect(avail);
 
-    let Some(slide) = deck.slides.get(index) else {
+    let Some(slide) = deck.slides.get(index).filter(|_| fonts_ready) else {
         return SlideResponse {
             canvas,
             scale,
@@ -156,8 +176,10 @@ pub fn slide_ui_with(
     );
     content.set_style(blocks::widget_style(ui.style(), &look, deck.theme));
     content.set_clip_rect(canvas.intersect(ui.clip_rect()));
+    state.problems.clear();
     let bctx = BlockCtx {
         look,
+        slide_key: slide.key(),
         base_dir: deck.base_dir.as_deref(),
     };
     match slide.layout {
