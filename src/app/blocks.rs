@@ -37,6 +37,9 @@ pub(crate) fn widget_style(base: &egui::Style, look: &Look, theme: Theme) -> egu
     style.visuals.widgets.noninteractive.fg_stroke.color = p.text;
     style.visuals.selection.bg_fill = p.accent.gamma_multiply(0.6);
     style.interaction.selectable_labels = false;
+    // The canvas scale puts rects on fractional points by design; egui's debug-build marker for
+    // that would otherwise show up in snapshots.
+    style.debug.show_unaligned = false;
 
     let text = |units: f32, family: FontFamily| FontId::new(look.scaled(units), family);
     let prop = FontFamily::Proportional;
