@@ -183,7 +183,12 @@ macro_rules! peer_runs {
             os_dp8.push(($err(t, &x), s, n));
             let ((t, x, n), s) = timed(|| {
                 let sol = IVP::ode(&sys, 0.0, t_end, x0)
-                    .method(ExplicitRungeKutta::dopri5().rtol(tol).atol(tol).max_steps(10_000_000))
+                    .method(
+                        ExplicitRungeKutta::dopri5()
+                            .rtol(tol)
+                            .atol(tol)
+                            .max_steps(10_000_000),
+                    )
                     .solve()
                     .unwrap();
                 let (t, y) = sol.last().unwrap();
@@ -192,7 +197,12 @@ macro_rules! peer_runs {
             de_dp5.push(($err(t, &x), s, n));
             let ((t, x, n), s) = timed(|| {
                 let sol = IVP::ode(&sys, 0.0, t_end, x0)
-                    .method(ExplicitRungeKutta::dop853().rtol(tol).atol(tol).max_steps(10_000_000))
+                    .method(
+                        ExplicitRungeKutta::dop853()
+                            .rtol(tol)
+                            .atol(tol)
+                            .max_steps(10_000_000),
+                    )
                     .solve()
                     .unwrap();
                 let (t, y) = sol.last().unwrap();

@@ -16,6 +16,9 @@ pub(crate) struct BlockCtx<'a> {
     pub look: Look,
     /// The deck's folder; image paths are relative to it.
     pub base_dir: Option<&'a Path>,
+    /// The slide's key (id, else title): with a block's path, the slot a formula keeps its
+    /// last good rendering in.
+    pub slide_key: &'a str,
 }
 
 /// The style widgets see inside a slide: egui's dark or light visuals recoloured to the
@@ -142,7 +145,7 @@ fn measure(ui: &egui::Ui, block: &Block, width: f32, bctx: &BlockCtx) -> Option<
                 .sum();
             Some(h + look.scaled(size::BULLET_GAP) * items.len().saturating_sub(1) as f32)
         }
-        Block::Math { src, .. } => Some(math_height(src, look)),
+        Block::Math { src, latex } => Some(math_height(ui, src, *latex, width, look)),
         Block::Image { path, width: w } => {
             let (_, h) = images::image_size(ui.ctx(), bctx.base_dir, path, w, width, look);
             Some(h)
@@ -188,7 +191,10 @@ fn block_ui(
                 .galley(egui::pos2(x, rect.top()), galley, look.palette.text);
         }
         Block::Bullets(items) => bullets_ui(ui, items, look),
-        Block::Math { src, latex } => math_ui(ui, src, *latex, look),
+        Block::Math { src, latex } => {
+            let slot = format!("{}/{path:?}", bctx.slide_key);
+            math_ui(ui, &slot, src, *latex, look)
+        }
         Block::Image { path: p, width: w } => images::image_ui(ui, bctx.base_dir, p, w, look),
         Block::Widget(spec) => {
             let (rect, _) = ui.allocate_exact_size(vec2(width, flex_h), Sense::hover());
@@ -337,38 +343,93 @@ pub(crate) fn inline_spans(text: &str) -> Vec<(&str, Inline)> {
     out
 }
 
-fn math_height(src: &str, look: &Look) -> f32 {
-    let lines = src.lines().count().max(1) as f32;
-    look.scaled(size::MATH * 1.3 * lines + 48.0)
+fn math_syntax(latex: bool) -> crate::math::MathSyntax {
+    if latex {
+        crate::math::MathSyntax::Latex
+    } else {
+        crate::math::MathSyntax::Typst
+    }
 }
 
-/// Display maths. Until the typesetter (`crate::math`) lands, the source is shown in a quiet
-/// monospace frame, so a deck with formulas is still presentable.
-fn math_ui(ui: &mut egui::Ui, src: &str, _latex: bool, look: &Look) {
+/// The typeset formula's size in points at `width` (shrunk to fit, as `math::math_ui` does),
+/// or `None` when it does not typeset.
+fn formula_size(
+    ui: &egui::Ui,
+    src: &str,
+    latex: bool,
+    width: f32,
+    look: &Look,
+) -> Option<egui::Vec2> {
+    let ppp = ui.ctx().pixels_per_point();
+    let cache = crate::math::MathCache::shared(ui.ctx());
+    let mut cache = cache.lock().ok()?;
+    let em_px = look.scaled(size::MATH) * ppp;
+    let f = cache
+        .get(ui.ctx(), src, math_syntax(latex), em_px, look.palette.title)
+        .ok()?;
+    let mut size = f.size_px / ppp;
+    if size.x > width && width > 1.0 {
+        size *= width / size.x;
+    }
+    Some(size)
+}
+
+fn math_height(ui: &egui::Ui, src: &str, latex: bool, width: f32, look: &Look) -> f32 {
+    match formula_size(ui, src, latex, width, look) {
+        Some(size) => size.y + ui.spacing().item_spacing.y,
+        // the fallback frame below: one monospace line per source line, plus the error
+        None => {
+            let lines = src.lines().count().max(1) as f32 + 1.0;
+            look.scaled(size::MATH * 1.3 * lines + 48.0)
+        }
+    }
+}
+
+/// Display maths, typeset by `crate::math` (cached, last good rendering kept per slot). A
+/// formula that has never rendered shows its source and error in a quiet frame instead.
+fn math_ui(ui: &mut egui::Ui, slot: &str, src: &str, latex: bool, look: &Look) {
+    let em = look.scaled(size::MATH);
+    let error = crate::math::math_ui(ui, slot, src, math_syntax(latex), em, look.palette.title);
+    let Some(error) = error else { return };
+    let cache = crate::math::MathCache::shared(ui.ctx());
+    let has_last_good = cache
+        .lock()
+        .map(|mut c| {
+            let ppp = ui.ctx().pixels_per_point();
+            let view = c.get_slot(
+                ui.ctx(),
+                slot,
+                src,
+                math_syntax(latex),
+                em * ppp,
+                look.palette.title,
+            );
+            view.formula.is_some()
+        })
+        .unwrap_or(false);
+    if has_last_good {
+        // the last good picture is on screen; the error goes to the presenter's log
+        tracing::warn!("{slot}: {error}");
+        return;
+    }
     let width = ui.available_width();
-    let h = math_height(src, look);
+    let h = math_height(ui, src, latex, width, look);
     let (rect, _) = ui.allocate_exact_size(vec2(width, h), Sense::hover());
-    let font = look.font(theme::MONO, size::MATH * 0.9, ui.ctx());
+    let font = look.font(theme::MONO, size::MATH * 0.6, ui.ctx());
+    let text = format!("{}\n{error}", src.trim());
     let galley = ui
         .painter()
-        .layout(src.trim().to_owned(), font, look.palette.title, width);
-    let frame = Rect::from_center_size(
-        rect.center(),
-        vec2(
-            (galley.size().x + look.scaled(64.0)).min(width),
-            rect.height(),
-        ),
-    );
+        .layout(text, font, look.palette.dim, width - look.scaled(64.0));
     ui.painter()
-        .rect_filled(frame, look.scaled(10.0), look.palette.panel);
+        .rect_filled(rect, look.scaled(10.0), look.palette.panel);
     ui.painter().rect_stroke(
-        frame,
+        rect,
         look.scaled(10.0),
-        Stroke::new(look.scaled(1.5), look.palette.dim.gamma_multiply(0.5)),
+        Stroke::new(look.scaled(1.5), egui::Color32::from_rgb(0xd0, 0x40, 0x40)),
         egui::StrokeKind::Inside,
     );
     ui.painter().galley(
-        frame.center() - galley.size() * 0.5,
+        rect.center() - galley.size() * 0.5,
         galley,
         look.palette.title,
     );

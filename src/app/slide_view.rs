@@ -159,6 +159,7 @@ pub fn slide_ui_with(
     let bctx = BlockCtx {
         look,
         base_dir: deck.base_dir.as_deref(),
+        slide_key: slide.key(),
     };
     match slide.layout {
         Layout::Content => content_slide_ui(&mut content, slide, &bctx, state),

@@ -138,6 +138,8 @@ pub fn install_fonts(ctx: &egui::Context) {
         return;
     }
     let mut defs = egui::FontDefinitions::default();
+    // Typst's maths fonts behind egui's, so labels with ẋ, ω, λ, √, ⁻¹ never hit a missing glyph.
+    crate::math::add_fallback_fonts(&mut defs);
     let fallbacks = defs
         .families
         .get(&FontFamily::Proportional)
