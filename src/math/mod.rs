@@ -10,5 +10,5 @@ mod fonts;
 pub mod typeset;
 
 pub use cache::{Formula, MathCache, MathView, math_ui};
-pub use fonts::install_egui_fallback_fonts;
+pub use fonts::{add_fallback_fonts, install_egui_fallback_fonts};
 pub use typeset::{MathError, MathSyntax, RenderedFormula, latex_to_typst, render_formula};
