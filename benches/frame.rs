@@ -1,6 +1,7 @@
 //! Frame time of the default water scene at 1280×720 on the adapter at hand (lavapipe when
 //! there is no GPU): CPU time (snapshot, uploads, command recording) and GPU time (submit to
-//! idle), reported as two criterion benchmarks.
+//! idle), reported as two criterion benchmarks; plus one fixed simulation step (school and
+//! floating bodies), which the window adds to each frame.
 //!
 //! `CARGO_TARGET_DIR=/work/target-release cargo bench --bench frame`
 
@@ -41,6 +42,17 @@ fn frame(c: &mut Criterion) {
                 .map(|_| h.timed_frame(SIZE).expect("frame").1)
                 .sum()
         })
+    });
+    group.finish();
+
+    // the simulation step each frame also pays in the window (fish + floating bodies)
+    let mut group = c.benchmark_group("scene_sim");
+    group
+        .sample_size(10)
+        .measurement_time(Duration::from_secs(5));
+    let fish = h.sim.fish_count();
+    group.bench_function(format!("fixed_step_{fish}_fish_3_bodies"), |b| {
+        b.iter(|| h.sim.step_once())
     });
     group.finish();
 }

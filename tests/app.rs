@@ -25,6 +25,28 @@ fn lecture_copy() -> (tempfile::TempDir, PathBuf) {
     (dir, path)
 }
 
+/// A small deck that stays fixed (the bundled lecture changes), for snapshots: a title slide,
+/// bullets with inline markup, maths, and a live plot.
+const FIXTURE: &str = r#"(
+    title: "Fixture deck",
+    slides: [
+        (id: "t", title: "Integrating motion", layout: Title,
+         body: [Text("From *one particle* to a tumbling rigid body")]),
+        (id: "b", title: "Bullets and maths", body: [
+            Bullets(["Euler: follow the slope", "Midpoint: look *half a step* ahead", "RK4: four slopes, `h^4` error"]),
+            Math(src: "x(t + h) = x(t) + h dot(x)(t)"),
+        ]),
+        (id: "p", title: "A live plot", body: [Widget(Spiral((h: 0.2, turns: 2.0)))]),
+    ],
+)"#;
+
+fn fixture() -> (tempfile::TempDir, PathBuf) {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("fixture.ron");
+    std::fs::write(&path, FIXTURE).unwrap();
+    (dir, path)
+}
+
 fn harness(path: &Path) -> Harness<'static, LecternApp> {
     let app = LecternApp::new(DeckSession::open(path).unwrap());
     Harness::builder()
@@ -131,10 +153,12 @@ fn overview_click_jumps_to_that_slide() {
     let mut h = harness(&path);
     h.run_steps(2);
     press(&mut h, Key::O);
-    // The grid fills the window row by row; the bottom-right quarter holds a later slide.
-    click(&mut h, Pos2::new(SIZE[0] * 0.8, SIZE[1] * 0.8));
+    let n = h.state().session().deck().slides.len();
+    let screen = egui::Rect::from_min_size(Pos2::ZERO, SIZE.into());
+    let cells = lectern::app::overlays::overview_cells(n, 16.0 / 9.0, screen);
+    click(&mut h, cells[n - 1].center());
     assert_eq!(*h.state().overlay(), Overlay::None);
-    assert!(index(&h) > 0, "clicked a later thumbnail");
+    assert_eq!(index(&h), n - 1, "clicked the last thumbnail");
 }
 
 #[test]
@@ -238,11 +262,17 @@ fn broken_save_shows_the_notice_and_keeps_the_slide() {
 }
 
 #[test]
-fn snapshots_of_title_overview_and_help() {
-    let (_dir, path) = lecture_copy();
+fn snapshots_of_slides_overview_and_help() {
+    let (_dir, path) = fixture();
     let mut h = harness(&path);
     h.run_steps(3);
     h.snapshot_options("app-title", &snapshot_options());
+    press(&mut h, Key::ArrowRight);
+    h.run_steps(2);
+    h.snapshot_options("app-bullets-math", &snapshot_options());
+    press(&mut h, Key::ArrowRight);
+    h.run_steps(2);
+    h.snapshot_options("app-plot", &snapshot_options());
     press(&mut h, Key::O);
     h.run_steps(2);
     h.snapshot_options("app-overview", &snapshot_options());

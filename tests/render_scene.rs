@@ -122,6 +122,14 @@ fn a_broken_shader_copy_reports_its_file_and_line() {
             d[0]
         );
         assert!(d[0].col > 0);
+        // naga's excerpt shows the file's own line numbers, not those of the expanded text
+        let here = format!("{}:{line}:", path.display());
+        assert!(d[0].message.contains(&here), "{}", d[0].message);
+        assert!(
+            d[0].message.contains(&format!("{line} │")),
+            "{}",
+            d[0].message
+        );
         std::fs::write(&path, original).unwrap();
     }
     // an error in an included file is reported in that file, at its own line
@@ -284,4 +292,24 @@ fn time_moves_the_waves_and_fish() {
     h.sim.set_time(0.5);
     let b = h.render(SIZE).unwrap();
     assert!(!within_tolerance(&a, &b));
+}
+
+#[test]
+fn ten_thousand_fish_grow_the_instance_buffer_and_the_water_grid_follows_live_edits() {
+    let mut h = headless(Path::new("shaders"));
+    h.sim.set_time(0.2);
+    let a = h.render(SIZE).unwrap();
+    let before = h.renderer.fish_capacity();
+    assert!(before >= h.sim.fish_count() && before < 10_000);
+    h.sim.scene.school.count = 12_000;
+    h.sim.step_once();
+    let b = h.render(SIZE).unwrap();
+    assert_eq!(h.sim.fish_count(), 12_000);
+    assert!(h.renderer.fish_capacity() >= 12_000, "the buffer grew");
+    assert!(!within_tolerance(&a, &b), "four times the fish must show");
+    // a coarser water grid (live slider) is rebuilt, and drawn without a wgpu error
+    let n = h.renderer.water_index_count();
+    h.sim.scene.water.resolution = 16;
+    h.render(SIZE).unwrap();
+    assert!(h.renderer.water_index_count() < n / 10);
 }

@@ -6,7 +6,7 @@
 
 use std::sync::atomic::Ordering;
 
-use egui_kittest::{Harness, SnapshotOptions};
+use egui_kittest::{Harness, SnapshotOptions, SnapshotResults};
 use lectern::deck::parse_deck;
 use lectern::widgets::{SlideWidget, WidgetSpec, params, work_precision};
 
@@ -29,6 +29,7 @@ fn harness(mut w: Box<dyn SlideWidget>) -> Harness<'static> {
     let mut h = Harness::builder()
         .with_size(SIZE)
         .with_theme(egui::Theme::Light)
+        .with_context_setup(|ctx| lectern::math::install_egui_fallback_fonts(ctx))
         .wgpu()
         .build_ui(move |ui| {
             egui::Frame::new()
@@ -47,130 +48,171 @@ fn render(ron_spec: &str) -> image::RgbaImage {
     harness(widget(ron_spec)).render().expect("render")
 }
 
-fn check(name: &str, ron_spec: &str) {
-    harness(widget(ron_spec)).snapshot_options(name, &options());
+/// Renders `ron_spec` and compares it with `tests/snapshots/{name}.png`; all of a test's
+/// comparisons are collected so one run updates (or reports) every picture.
+fn check(results: &mut SnapshotResults, name: &str, ron_spec: &str) {
+    let mut h = harness(widget(ron_spec));
+    results.add(h.try_snapshot_options(name, &options()));
 }
 
 const SLOPE_1D: &str = "SlopeField((field: OneD(Forced), start: (0.0, 1.5), h: 0.5, t_end: 8.0, view: (0.0, 8.0, -1.5, 2.0)))";
 
 #[test]
 fn slope_field_states() {
-    check("widget-slope-field-1d-h0.5", SLOPE_1D);
+    let mut r = SnapshotResults::new();
+    check(&mut r, "widget-slope-field-1d-h0.5", SLOPE_1D);
     check(
+        &mut r,
         "widget-slope-field-1d-h1-rk4-only",
         "SlopeField((field: OneD(Forced), start: (1.0, -1.0), h: 1.0, t_end: 8.0, view: (0.0, 8.0, -1.5, 2.0), euler: false, midpoint: false))",
     );
     check(
+        &mut r,
         "widget-slope-field-phase-circle",
         "SlopeField((field: Phase(Circle), start: (1.0, 0.0), h: 0.3, t_end: 6.2832, view: (-2.0, 2.0, -2.0, 2.0)))",
     );
     check(
+        &mut r,
         "widget-slope-field-phase-vdp",
         "SlopeField((field: Phase(VanDerPol(mu: 1.0)), start: (0.5, 0.0), h: 0.2, t_end: 12.0, view: (-3.0, 3.0, -3.0, 3.0), grid: 17))",
     );
+    r.unwrap();
 }
 
 #[test]
 fn step_construction_states() {
+    let mut r = SnapshotResults::new();
     check(
+        &mut r,
         "widget-step-euler",
         "StepConstruction((method: Euler, h: 1.5, stage: 2))",
     );
     check(
+        &mut r,
         "widget-step-midpoint-half",
         "StepConstruction((method: Midpoint, h: 1.5, stage: 2))",
     );
     check(
+        &mut r,
         "widget-step-rk4-k2",
         "StepConstruction((method: Rk4, h: 1.5, stage: 2))",
     );
     check(
+        &mut r,
         "widget-step-rk4-full",
         "StepConstruction((method: Rk4, h: 1.5, stage: 5))",
     );
+    r.unwrap();
 }
 
 #[test]
 fn spiral_states() {
-    check("widget-spiral-h0.1", "Spiral((h: 0.1, turns: 3.0))");
+    let mut r = SnapshotResults::new();
+    check(&mut r, "widget-spiral-h0.1", "Spiral((h: 0.1, turns: 3.0))");
     check(
+        &mut r,
         "widget-spiral-h0.5-euler-only",
         "Spiral((h: 0.5, turns: 2.0, compare: false))",
     );
+    r.unwrap();
 }
 
 #[test]
 fn neptune_states() {
+    let mut r = SnapshotResults::new();
     check(
+        &mut r,
         "widget-neptune-stable",
         "Neptune((problem: Decay(lambda: -5.0), h: 0.3, t_end: 4.0, rk4: true))",
     );
     check(
+        &mut r,
         "widget-neptune-diverged",
         "Neptune((problem: Decay(lambda: -5.0), h: 0.45, t_end: 4.0, rk4: true))",
     );
     check(
+        &mut r,
         "widget-neptune-oscillator",
         "Neptune((problem: Oscillator, h: 0.5, t_end: 20.0, midpoint: true, rk4: true))",
     );
     // h = 1e9 is clamped, never a panic or NaN
     check(
+        &mut r,
         "widget-neptune-huge-h",
         "Neptune((problem: Decay(lambda: -5.0), h: 1e9, t_end: 4.0))",
     );
+    r.unwrap();
 }
 
 #[test]
 fn taylor_states() {
+    let mut r = SnapshotResults::new();
     check(
+        &mut r,
         "widget-taylor-sin-4",
         "Taylor((function: Sin, a: 0.0, order: 4))",
     );
     check(
+        &mut r,
         "widget-taylor-log1p-6",
         "Taylor((function: Log1p, a: 0.0, order: 6, range: (-0.95, 3.0)))",
     );
+    r.unwrap();
 }
 
 #[test]
 fn convergence_states() {
+    let mut r = SnapshotResults::new();
     check(
+        &mut r,
         "widget-convergence",
         "Convergence((field: Forced, levels: 8))",
     );
     check(
+        &mut r,
         "widget-convergence-typo",
         "Convergence((field: Forced, levels: 8, typo: true))",
     );
+    r.unwrap();
 }
 
 #[test]
 fn work_precision_states() {
+    let mut r = SnapshotResults::new();
     check(
+        &mut r,
         "widget-work-precision",
         "WorkPrecision((t_end: 10.0, levels: 10, rk5: true))",
     );
+    r.unwrap();
 }
 
 #[test]
 fn stability_states() {
-    check("widget-stability", "Stability(())");
+    let mut r = SnapshotResults::new();
+    check(&mut r, "widget-stability", "Stability(())");
     check(
+        &mut r,
         "widget-stability-deck-tableau",
         r#"Stability((methods: [Euler, Rk4], tableaux: [(name: "Ralston", a: [[0.0, 0.0], [0.6666666666666666, 0.0]], b: [0.25, 0.75], c: [0.0, 0.6666666666666666])], lambda: Some((0.0, 1.0)), h: 2.5))"#,
     );
+    r.unwrap();
 }
 
 #[test]
 fn rigid_body_states() {
+    let mut r = SnapshotResults::new();
     check(
+        &mut r,
         "widget-rigid-body-t0",
         "RigidBody((t: 0.0, playing: false))",
     );
     check(
+        &mut r,
         "widget-rigid-body-t12",
         "RigidBody((t: 12.0, playing: false, n: 8))",
     );
+    r.unwrap();
 }
 
 /// Proves the snapshots bite: the committed slope-field picture for h = 0.5 must not match a

@@ -14,6 +14,8 @@ use crate::deck::{Block, Theme};
 /// What every block needs to draw itself.
 pub(crate) struct BlockCtx<'a> {
     pub look: Look,
+    /// The slide's key, to name formula slots (each keeps its last good rendering).
+    pub slide_key: &'a str,
     /// The deck's folder; image paths are relative to it.
     pub base_dir: Option<&'a Path>,
 }
@@ -35,6 +37,9 @@ pub(crate) fn widget_style(base: &egui::Style, look: &Look, theme: Theme) -> egu
     style.visuals.widgets.noninteractive.fg_stroke.color = p.text;
     style.visuals.selection.bg_fill = p.accent.gamma_multiply(0.6);
     style.interaction.selectable_labels = false;
+    // The canvas scale puts rects on fractional points by design; egui's debug-build marker for
+    // that would otherwise show up in snapshots.
+    style.debug.show_unaligned = false;
 
     let text = |units: f32, family: FontFamily| FontId::new(look.scaled(units), family);
     let prop = FontFamily::Proportional;
@@ -52,6 +57,10 @@ pub(crate) fn widget_style(base: &egui::Style, look: &Look, theme: Theme) -> egu
         ),
     ]
     .into();
+    style.text_styles.insert(
+        TextStyle::Name(theme::CANVAS_STYLE.into()),
+        text(size::WIDGET_TEXT, FontFamily::Proportional),
+    );
 
     // egui's default spacing is made for 12.5-point body text; scale it with ours.
     let k = look.scaled(size::WIDGET_TEXT) / 12.5;
@@ -142,7 +151,10 @@ fn measure(ui: &egui::Ui, block: &Block, width: f32, bctx: &BlockCtx) -> Option<
                 .sum();
             Some(h + look.scaled(size::BULLET_GAP) * items.len().saturating_sub(1) as f32)
         }
-        Block::Math { src, .. } => Some(math_height(src, look)),
+        Block::Math { src, latex } => Some(
+            formula(ui, bctx, &[], src, *latex)
+                .map_or_else(|| math_source_height(src, look), |f| f.size(ui, width).y),
+        ),
         Block::Image { path, width: w } => {
             let (_, h) = images::image_size(ui.ctx(), bctx.base_dir, path, w, width, look);
             Some(h)
@@ -188,7 +200,7 @@ fn block_ui(
                 .galley(egui::pos2(x, rect.top()), galley, look.palette.text);
         }
         Block::Bullets(items) => bullets_ui(ui, items, look),
-        Block::Math { src, latex } => math_ui(ui, src, *latex, look),
+        Block::Math { src, latex } => math_ui(ui, bctx, path, src, *latex, state),
         Block::Image { path: p, width: w } => images::image_ui(ui, bctx.base_dir, p, w, look),
         Block::Widget(spec) => {
             let (rect, _) = ui.allocate_exact_size(vec2(width, flex_h), Sense::hover());
@@ -337,16 +349,90 @@ pub(crate) fn inline_spans(text: &str) -> Vec<(&str, Inline)> {
     out
 }
 
-fn math_height(src: &str, look: &Look) -> f32 {
+/// A typeset formula, as laid out on the slide.
+struct Typeset {
+    texture: egui::TextureId,
+    size_px: egui::Vec2,
+    error: Option<String>,
+}
+
+impl Typeset {
+    /// Its size in points, shrunk to `width` if wider (never overflow the slide).
+    fn size(&self, ui: &egui::Ui, width: f32) -> egui::Vec2 {
+        let size = self.size_px / ui.ctx().pixels_per_point();
+        if size.x > width && width > 1.0 {
+            size * (width / size.x)
+        } else {
+            size
+        }
+    }
+}
+
+/// The formula for `src` from the shared cache (typeset on first use), or its last good
+/// rendering if the current source is broken; `None` if it never rendered.
+fn formula(
+    ui: &egui::Ui,
+    bctx: &BlockCtx,
+    path: &[usize],
+    src: &str,
+    latex: bool,
+) -> Option<Typeset> {
+    use crate::math::{MathCache, MathSyntax};
+    let ctx = ui.ctx();
+    let syntax = if latex {
+        MathSyntax::Latex
+    } else {
+        MathSyntax::Typst
+    };
+    let em_px = bctx.look.scaled(size::MATH) * ctx.pixels_per_point();
+    let slot = format!("{}/{path:?}", bctx.slide_key);
+    let cache = MathCache::shared(ctx);
+    let view = cache
+        .lock()
+        .ok()?
+        .get_slot(ctx, &slot, src, syntax, em_px, bctx.look.palette.title);
+    let error = view.error.map(|e| e.to_string());
+    view.formula.map(|f| Typeset {
+        texture: f.texture.id(),
+        size_px: f.size_px,
+        error,
+    })
+}
+
+fn math_source_height(src: &str, look: &Look) -> f32 {
     let lines = src.lines().count().max(1) as f32;
     look.scaled(size::MATH * 1.3 * lines + 48.0)
 }
 
-/// Display maths. Until the typesetter (`crate::math`) lands, the source is shown in a quiet
-/// monospace frame, so a deck with formulas is still presentable.
-fn math_ui(ui: &mut egui::Ui, src: &str, _latex: bool, look: &Look) {
+/// Display maths, typeset by Typst (`crate::math`) and centred. A formula that never rendered
+/// shows its source in a quiet monospace frame; a broken edit keeps the last good picture. Either
+/// way the error goes to the slide's problems, for the presenter's screen.
+fn math_ui(
+    ui: &mut egui::Ui,
+    bctx: &BlockCtx,
+    path: &[usize],
+    src: &str,
+    latex: bool,
+    state: &mut SlideState,
+) {
+    let look = &bctx.look;
     let width = ui.available_width();
-    let h = math_height(src, look);
+    if let Some(f) = formula(ui, bctx, path, src, latex) {
+        let size = f.size(ui, width);
+        let (row, _) = ui.allocate_exact_size(vec2(width, size.y), Sense::hover());
+        let rect = Rect::from_center_size(row.center(), size);
+        ui.painter().image(
+            f.texture,
+            rect,
+            Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0)),
+            egui::Color32::WHITE,
+        );
+        if let Some(e) = f.error {
+            state.note_problem(format!("formula {path:?}: {e}"));
+        }
+        return;
+    }
+    let h = math_source_height(src, look);
     let (rect, _) = ui.allocate_exact_size(vec2(width, h), Sense::hover());
     let font = look.font(theme::MONO, size::MATH * 0.9, ui.ctx());
     let galley = ui
@@ -372,6 +458,7 @@ fn math_ui(ui: &mut egui::Ui, src: &str, _latex: bool, look: &Look) {
         galley,
         look.palette.title,
     );
+    state.note_problem(format!("formula {path:?} did not typeset: {src}"));
 }
 
 #[cfg(test)]

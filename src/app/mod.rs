@@ -7,9 +7,14 @@ pub mod keys;
 mod lectern_app;
 pub mod offscreen;
 pub mod overlays;
+pub mod pacing;
+pub mod presenter;
 pub mod slide_view;
 pub mod theme;
+pub mod tweaks;
 
 pub use lectern_app::{LecternApp, Mode, Overlay};
 pub use offscreen::{OffscreenError, OffscreenRenderer, render_slide_png};
-pub use slide_view::{DeckState, SlideOptions, SlideResponse, SlideState, slide_ui, slide_ui_with};
+pub use slide_view::{
+    DeckState, SlideOptions, SlideResponse, SlideState, TweakSnapshot, slide_ui, slide_ui_with,
+};

@@ -48,7 +48,7 @@ pub fn help_ui(ui: &mut egui::Ui, palette: &Palette) {
             let bold = theme::family_or_default(&ctx, theme::SERIF_BOLD);
             let screen = ctx.content_rect();
             let row_h = s * 1.45;
-            let size = vec2(s * 30.0, row_h * (HELP.len() as f32 + 2.6));
+            let size = vec2(s * 32.0, row_h * (HELP.len() as f32 + 2.6));
             let rect = Rect::from_center_size(screen.center(), size.min(screen.size() * 0.96));
             card(ui, rect, palette);
             let p = ui.painter();
@@ -59,7 +59,7 @@ pub fn help_ui(ui: &mut egui::Ui, palette: &Palette) {
                 egui::FontId::new(s * 1.3, bold),
                 palette.title,
             );
-            let col = rect.left() + s * 13.0;
+            let col = rect.left() + s * 14.5;
             for (i, (keys, what)) in HELP.iter().enumerate() {
                 let y = rect.top() + s * 1.2 + row_h * (i as f32 + 1.6);
                 p.text(
@@ -95,7 +95,7 @@ pub fn goto_ui(ui: &mut egui::Ui, typed: &str, slides: usize, palette: &Palette)
             ui.painter().text(
                 rect.center() - vec2(0.0, s * 0.5),
                 Align2::CENTER_CENTER,
-                format!("Go to slide  {typed}▏"),
+                format!("Go to slide  {typed}_"),
                 egui::FontId::new(s, serif.clone()),
                 palette.title,
             );
@@ -119,34 +119,9 @@ pub fn overview_ui(
     let palette = Palette::of(deck.theme);
     let avail = ui.available_rect_before_wrap();
     ui.painter().rect_filled(avail, 0.0, palette.letterbox);
-    let n = deck.slides.len().max(1);
-    let ratio = deck.aspect.ratio();
-    let gap = (avail.width() / 80.0).max(6.0);
-    let area = avail.shrink(gap * 2.0);
-    // The column count that makes the thumbnails largest while all of them fit.
-    let (cols, cell_w) = (1..=n)
-        .map(|cols| {
-            let rows = n.div_ceil(cols) as f32;
-            let w_by_width = (area.width() - gap * (cols as f32 - 1.0)) / cols as f32;
-            let w_by_height = ((area.height() - gap * (rows - 1.0)) / rows) * ratio;
-            (cols, w_by_width.min(w_by_height))
-        })
-        .max_by(|a, b| a.1.total_cmp(&b.1))
-        .unwrap_or((1, area.width()));
-    let cell = vec2(cell_w, cell_w / ratio);
-    let rows = n.div_ceil(cols);
-    let grid = vec2(
-        cols as f32 * cell.x + (cols as f32 - 1.0) * gap,
-        rows as f32 * cell.y + (rows as f32 - 1.0) * gap,
-    );
-    let origin = area.center() - grid * 0.5;
+    let cells = overview_cells(deck.slides.len(), deck.aspect.ratio(), avail);
     let mut clicked = None;
-    for (i, slide) in deck.slides.iter().enumerate() {
-        let (r, c) = (i / cols, i % cols);
-        let rect = Rect::from_min_size(
-            origin + vec2(c as f32 * (cell.x + gap), r as f32 * (cell.y + gap)),
-            cell,
-        );
+    for ((i, slide), rect) in deck.slides.iter().enumerate().zip(cells) {
         let mut child = ui.new_child(
             egui::UiBuilder::new()
                 .id_salt(("overview", i))
@@ -181,11 +156,44 @@ pub fn overview_ui(
     clicked
 }
 
+/// Where the overview grid puts each of `n` slides of aspect `ratio` inside `avail`: the column
+/// count that makes the thumbnails largest while all of them fit, centred.
+pub fn overview_cells(n: usize, ratio: f32, avail: Rect) -> Vec<Rect> {
+    let n = n.max(1);
+    let gap = (avail.width() / 80.0).max(6.0);
+    let area = avail.shrink(gap * 2.0);
+    let (cols, cell_w) = (1..=n)
+        .map(|cols| {
+            let rows = n.div_ceil(cols) as f32;
+            let w_by_width = (area.width() - gap * (cols as f32 - 1.0)) / cols as f32;
+            let w_by_height = ((area.height() - gap * (rows - 1.0)) / rows) * ratio;
+            (cols, w_by_width.min(w_by_height))
+        })
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+        .unwrap_or((1, area.width()));
+    let cell = vec2(cell_w, cell_w / ratio);
+    let rows = n.div_ceil(cols);
+    let grid = vec2(
+        cols as f32 * cell.x + (cols as f32 - 1.0) * gap,
+        rows as f32 * cell.y + (rows as f32 - 1.0) * gap,
+    );
+    let origin = area.center() - grid * 0.5;
+    (0..n)
+        .map(|i| {
+            let (r, c) = (i / cols, i % cols);
+            Rect::from_min_size(
+                origin + vec2(c as f32 * (cell.x + gap), r as f32 * (cell.y + gap)),
+                cell,
+            )
+        })
+        .collect()
+}
+
 /// The reload error: small, bottom left, with file:line:col, until the file is fixed.
 pub fn error_notice_ui(ui: &mut egui::Ui, error: &Diagnostic, palette: &Palette) {
     let ctx = ui.ctx().clone();
     let screen = ctx.content_rect();
-    let s = (text_size(ui) * 0.62).max(12.0);
+    let s = (text_size(ui) * 0.72).max(12.0);
     egui::Area::new(egui::Id::unique("lectern-reload-error"))
         .order(egui::Order::Foreground)
         .anchor(Align2::LEFT_BOTTOM, vec2(s, -s))
@@ -199,7 +207,13 @@ pub fn error_notice_ui(ui: &mut egui::Ui, error: &Diagnostic, palette: &Palette)
                 .show(ui, |ui| {
                     ui.set_max_width(screen.width() * 0.6);
                     ui.label(
-                        egui::RichText::new(format!("⚠ {error}"))
+                        egui::RichText::new("Not reloaded")
+                            .size(s)
+                            .strong()
+                            .color(Color32::from_rgb(0xff, 0x9c, 0x8f)),
+                    );
+                    ui.label(
+                        egui::RichText::new(error.to_string())
                             .font(egui::FontId::monospace(s))
                             .color(Color32::from_rgb(0xff, 0xdc, 0xd6)),
                     );
@@ -232,8 +246,8 @@ pub fn toast_ui(ui: &mut egui::Ui, message: &str, palette: &Palette) {
         });
 }
 
-/// Scene mode, until the water scene is built: says so in the slides' style.
-pub fn scene_placeholder_ui(ui: &mut egui::Ui, palette: &Palette) {
+/// Scene mode when the scene cannot be shown: says why, in the slides' style.
+pub fn scene_placeholder_ui(ui: &mut egui::Ui, palette: &Palette, why: &str) {
     let rect = ui.available_rect_before_wrap();
     ui.painter()
         .rect_filled(rect, 0.0, Color32::from_rgb(0x0b, 0x1e, 0x2d));
@@ -249,7 +263,7 @@ pub fn scene_placeholder_ui(ui: &mut egui::Ui, palette: &Palette) {
     ui.painter().text(
         rect.center() + vec2(0.0, s * 0.6),
         Align2::CENTER_CENTER,
-        "The water scene is not built yet. Tab returns to the slides.",
+        format!("{why}  Tab returns to the slides."),
         egui::FontId::new(s * 0.45, theme::family_or_default(&ctx, theme::SERIF)),
         palette.dim,
     );

@@ -8,14 +8,17 @@ use egui::{Align, Color32, Rect, Sense, Stroke, UiBuilder, Vec2, vec2};
 
 use super::blocks::{self, BlockCtx};
 use super::theme::{self, Look, Palette, fit_canvas, size};
-use crate::deck::{Deck, Layout, Slide};
-use crate::widgets::{SlideWidget, WidgetSpec};
+use crate::deck::{Block, Deck, Layout, Slide};
+use crate::widgets::{ParamSnapshot, SlideWidget, WidgetSpec, params};
 
 /// The live state of one slide: its widgets, created from their specs the first time the slide
 /// is drawn and kept while presenting (so a dragged slider stays where the lecturer left it).
 #[derive(Default)]
 pub struct SlideState {
     pub(crate) widgets: HashMap<Vec<usize>, WidgetSlot>,
+    /// Problems found while drawing (a formula that does not typeset), from the last frame:
+    /// for the presenter's screen, never the audience's.
+    problems: Vec<String>,
 }
 
 pub(crate) struct WidgetSlot {
@@ -32,9 +35,11 @@ impl SlideState {
             .entry(path.to_vec())
             .and_modify(|slot| {
                 if slot.spec != *spec {
+                    let mut widget = spec.instantiate();
+                    carry_tweaks(&slot.spec, slot.widget.as_mut(), widget.as_mut());
                     *slot = WidgetSlot {
                         spec: spec.clone(),
-                        widget: spec.instantiate(),
+                        widget,
                     };
                 }
             })
@@ -45,10 +50,148 @@ impl SlideState {
         slot.widget.as_mut()
     }
 
+    pub(crate) fn note_problem(&mut self, problem: String) {
+        if !self.problems.contains(&problem) {
+            self.problems.push(problem);
+        }
+    }
+
+    /// Problems found while drawing the slide the last time (e.g. a formula with an error).
+    pub fn problems(&self) -> &[String] {
+        &self.problems
+    }
+
+    /// Makes every widget of `slide` (so tweaks can be set before it is first drawn).
+    pub fn ensure_widgets(&mut self, slide: &Slide) {
+        fn walk(state: &mut SlideState, blocks: &[Block], path: &mut Vec<usize>) {
+            for (i, b) in blocks.iter().enumerate() {
+                path.push(i);
+                match b {
+                    Block::Widget(spec) => {
+                        state.widget(path, spec);
+                    }
+                    Block::Columns(cols) => {
+                        for (c, col) in cols.iter().enumerate() {
+                            path.push(c);
+                            walk(state, col, path);
+                            path.pop();
+                        }
+                    }
+                    _ => {}
+                }
+                path.pop();
+            }
+        }
+        walk(self, &slide.body, &mut Vec::new());
+    }
+
+    /// Every live value, by widget path and parameter id (a bookmark).
+    pub fn tweak_snapshot(&mut self) -> TweakSnapshot {
+        let mut out: TweakSnapshot = self
+            .widgets
+            .iter_mut()
+            .map(|(path, slot)| (path.clone(), params::snapshot(slot.widget.as_mut())))
+            .collect();
+        out.sort_by(|a, b| a.0.cmp(&b.0));
+        out
+    }
+
+    /// Sets the values of a [`Self::tweak_snapshot`] (unknown widgets or ids are skipped).
+    pub fn restore(&mut self, slide: &Slide, snapshot: &TweakSnapshot) {
+        self.ensure_widgets(slide);
+        for (path, values) in snapshot {
+            if let Some(slot) = self.widgets.get_mut(path) {
+                params::restore(slot.widget.as_mut(), values);
+            }
+        }
+    }
+
+    /// Sets one value by widget path and parameter id; false if there is no such parameter.
+    pub fn set_param(&mut self, path: &[usize], id: &str, value: ParamSnapshot) -> bool {
+        let Some(slot) = self.widgets.get_mut(path) else {
+            return false;
+        };
+        slot.widget
+            .params()
+            .into_iter()
+            .find(|p| p.id == id)
+            .is_some_and(|mut p| p.set(value).is_ok())
+    }
+
+    /// One value by widget path and parameter id.
+    pub fn param(&mut self, path: &[usize], id: &str) -> Option<ParamSnapshot> {
+        let slot = self.widgets.get_mut(path)?;
+        slot.widget
+            .params()
+            .iter()
+            .find(|p| p.id == id)
+            .map(|p| p.get())
+    }
+
+    /// `R`: every widget back to the file's values.
+    pub fn reset(&mut self) {
+        for slot in self.widgets.values_mut() {
+            slot.widget.reset();
+        }
+    }
+
+    /// The values that differ from the file's, by widget path: what write-back writes.
+    pub fn tweaked(&mut self) -> Vec<(Vec<usize>, String, ParamSnapshot)> {
+        let mut out = Vec::new();
+        for (path, slot) in &mut self.widgets {
+            let file: Vec<(String, ParamSnapshot)> =
+                params::snapshot(slot.spec.instantiate().as_mut());
+            for (id, v) in params::snapshot(slot.widget.as_mut()) {
+                if file.iter().any(|(fid, fv)| *fid == id && *fv != v) {
+                    out.push((path.clone(), id, v));
+                }
+            }
+        }
+        out.sort_by(|a, b| (&a.0, &a.1).cmp(&(&b.0, &b.1)));
+        out
+    }
+
+    /// The live controls of every widget on the slide (the presenter's panel).
+    pub fn controls_ui(&mut self, ui: &mut egui::Ui) {
+        let mut paths: Vec<Vec<usize>> = self.widgets.keys().cloned().collect();
+        paths.sort();
+        for path in paths {
+            let Some(slot) = self.widgets.get_mut(&path) else {
+                continue;
+            };
+            ui.label(egui::RichText::new(slot.spec.kind()).strong());
+            ui.push_id(&path, |ui| {
+                for mut p in slot.widget.params() {
+                    p.ui(ui);
+                }
+            });
+            ui.add_space(6.0);
+        }
+    }
+
     /// How many widgets are alive (for tests of the keep-alive rule).
     pub fn widget_count(&self) -> usize {
         self.widgets.len()
     }
+}
+
+/// A slide's live values: per widget path, (parameter id, value).
+pub type TweakSnapshot = Vec<(Vec<usize>, Vec<(String, ParamSnapshot)>)>;
+
+/// After a reload changed a widget's spec: the new widget takes the live values the lecturer
+/// tweaked, except where the file changed that very value (then the file wins).
+fn carry_tweaks(old_spec: &WidgetSpec, live: &mut dyn SlideWidget, new: &mut dyn SlideWidget) {
+    let old_file = params::snapshot(old_spec.instantiate().as_mut());
+    let new_file = params::snapshot(new);
+    let keep: Vec<(String, ParamSnapshot)> = params::snapshot(live)
+        .into_iter()
+        .filter(|(id, v)| {
+            let was = old_file.iter().find(|(i, _)| i == id).map(|(_, v)| *v);
+            let now = new_file.iter().find(|(i, _)| i == id).map(|(_, v)| *v);
+            was != Some(*v) && was == now
+        })
+        .collect();
+    params::restore(new, &keep);
 }
 
 /// The states of every slide of a deck, by slide key (id, else title), so they survive moving
@@ -117,6 +260,12 @@ pub fn slide_ui_with(
     options: SlideOptions,
 ) -> SlideResponse {
     theme::install_fonts(ui.ctx());
+    let fonts_ready = theme::fonts_installed(ui.ctx());
+    if !fonts_ready {
+        // Text was laid out earlier in this pass, so the fonts arrive with the next one: run it
+        // now rather than show (or snapshot) a frame in the wrong face.
+        ui.ctx().request_discard("lectern: slide fonts installed");
+    }
     let avail = ui.available_rect_before_wrap();
     let palette = Palette::of(deck.theme);
     let (canvas, scale) = fit_canvas(avail, deck.aspect.ratio());
@@ -133,7 +282,7 @@ pub fn slide_ui_with(
     );
     ui.advance_cursor_after_rect(avail);
 
-    let Some(slide) = deck.slides.get(index) else {
+    let Some(slide) = deck.slides.get(index).filter(|_| fonts_ready) else {
         return SlideResponse {
             canvas,
             scale,
@@ -156,8 +305,10 @@ pub fn slide_ui_with(
     );
     content.set_style(blocks::widget_style(ui.style(), &look, deck.theme));
     content.set_clip_rect(canvas.intersect(ui.clip_rect()));
+    state.problems.clear();
     let bctx = BlockCtx {
         look,
+        slide_key: slide.key(),
         base_dir: deck.base_dir.as_deref(),
     };
     match slide.layout {

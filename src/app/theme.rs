@@ -122,12 +122,17 @@ pub fn family_or_default(ctx: &egui::Context, name: &str) -> FontFamily {
     }
 }
 
+/// Whether [`install_fonts`] has taken effect in `ctx`.
+pub fn fonts_installed(ctx: &egui::Context) -> bool {
+    let family = FontFamily::Name(SERIF.into());
+    ctx.fonts(|f| f.families().contains(&family))
+}
+
 /// Installs the slide fonts: Libertinus Serif (the face Typst sets maths beside, so text and
 /// formulas match) and DejaVu Sans Mono, all bundled by `typst-assets`, with egui's own fonts as
 /// fallbacks for symbols and emoji. Idempotent and cheap after the first call.
 pub fn install_fonts(ctx: &egui::Context) {
-    let family = FontFamily::Name(SERIF.into());
-    if ctx.fonts(|f| f.families().contains(&family)) {
+    if fonts_installed(ctx) {
         return;
     }
     // typst-assets 0.15 lists its fonts in a fixed order (see its `fonts()`); we pick by index
@@ -138,11 +143,31 @@ pub fn install_fonts(ctx: &egui::Context) {
         return;
     }
     let mut defs = egui::FontDefinitions::default();
-    let fallbacks = defs
-        .families
-        .get(&FontFamily::Proportional)
-        .cloned()
-        .unwrap_or_default();
+    // After our face: New Computer Modern (wide coverage of maths symbols, super- and
+    // subscripts), then egui's own fonts (emoji, icons).
+    defs.font_data.insert(
+        "NewCM10-Regular".into(),
+        egui::FontData::from_static(all[9]).into(),
+    );
+    defs.font_data.insert(
+        "NewCMMath-Book".into(),
+        egui::FontData::from_static(all[7]).into(),
+    );
+    let mut fallbacks = vec!["NewCM10-Regular".to_owned(), "NewCMMath-Book".to_owned()];
+    fallbacks.extend(
+        defs.families
+            .get(&FontFamily::Proportional)
+            .cloned()
+            .unwrap_or_default(),
+    );
+    // Widget text (egui's proportional and monospace families) gets the same fallbacks, so a
+    // plot label like "ẋ" or "Rᵀ" is drawn, not a box.
+    for family in [FontFamily::Proportional, FontFamily::Monospace] {
+        if let Some(chain) = defs.families.get_mut(&family) {
+            chain.insert(1.min(chain.len()), "NewCMMath-Book".to_owned());
+            chain.insert(1.min(chain.len()), "NewCM10-Regular".to_owned());
+        }
+    }
     let mut add = |name: &str, bytes: &'static [u8], family: &str| {
         defs.font_data
             .insert(name.into(), egui::FontData::from_static(bytes).into());
@@ -155,4 +180,14 @@ pub fn install_fonts(ctx: &egui::Context) {
     add("LibertinusSerif-Semibold", all[4], SERIF_BOLD);
     add("DejaVuSansMono", all[16], MONO);
     ctx.set_fonts(defs);
+}
+
+/// A text style that only slide canvases define: widgets that set absolute text sizes for use
+/// outside a slide check [`is_canvas_style`] and leave the canvas-scaled sizes alone.
+pub const CANVAS_STYLE: &str = "lectern-canvas";
+
+pub fn is_canvas_style(style: &egui::Style) -> bool {
+    style
+        .text_styles
+        .contains_key(&egui::TextStyle::Name(CANVAS_STYLE.into()))
 }

@@ -147,55 +147,26 @@ fn check_file(file: &Path, report: &mut Report) {
             }
             Err(d) => Err(vec![d]),
         },
-        // HOOK(scene): call `crate::scene::check_file(file)` once the scene engineer's checker is
-        // on main. Until then scenes are checked for RON syntax only.
-        Kind::Scene => ron_syntax(file),
-        // HOOK(shaders): call `crate::render::shaders::check_file(file)` once it is on main (it
-        // adds pipeline-level checks). Until then: naga's parse and validation.
-        Kind::Shader => wgsl(file),
-        // HOOK(numerics): `ode::problem::Problem::load` / `Tableau::load` once merged. Until
-        // then RON syntax only.
-        Kind::Problem | Kind::Tableau => ron_syntax(file),
+        Kind::Scene => as_result(crate::scene::check_file(file)),
+        Kind::Shader => as_result(crate::render::shaders::check_file(file)),
+        Kind::Problem => crate::ode::problem::Problem::load(file)
+            .map(|_| ())
+            .map_err(|d| vec![d]),
+        Kind::Tableau => crate::ode::Tableau::load(file)
+            .map(|_| ())
+            .map_err(|d| vec![d]),
     };
     if let Err(mut ds) = result {
         report.problems.append(&mut ds);
     }
 }
 
-fn read(file: &Path) -> Result<String, Vec<Diagnostic>> {
-    std::fs::read_to_string(file)
-        .map_err(|e| vec![Diagnostic::whole_file(file, format!("cannot read: {e}"))])
-}
-
-fn ron_syntax(file: &Path) -> Result<(), Vec<Diagnostic>> {
-    let text = read(file)?;
-    ron::Options::default()
-        .with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME)
-        .from_str::<ron::Value>(&text)
-        .map(|_| ())
-        .map_err(|e| vec![Diagnostic::from_ron(file, &e)])
-}
-
-fn wgsl(file: &Path) -> Result<(), Vec<Diagnostic>> {
-    let text = read(file)?;
-    let diag = |loc: Option<naga::SourceLocation>, msg: String| {
-        let (line, col) = loc.map_or((0, 0), |l| {
-            (l.line_number as usize, l.line_position as usize)
-        });
-        vec![Diagnostic::new(file, line, col, msg)]
-    };
-    let module = naga::front::wgsl::parse_str(&text)
-        .map_err(|e| diag(e.location(&text), e.message().to_owned()))?;
-    naga::valid::Validator::new(
-        naga::valid::ValidationFlags::all(),
-        naga::valid::Capabilities::all(),
-    )
-    .validate(&module)
-    .map_err(|e| {
-        let loc = e.location(&text);
-        diag(loc, e.as_inner().to_string())
-    })?;
-    Ok(())
+fn as_result(problems: Vec<Diagnostic>) -> Result<(), Vec<Diagnostic>> {
+    if problems.is_empty() {
+        Ok(())
+    } else {
+        Err(problems)
+    }
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {

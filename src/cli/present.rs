@@ -18,6 +18,13 @@ pub struct Args {
     /// Start fullscreen.
     #[arg(long)]
     pub fullscreen: bool,
+    /// Open a second window with the presenter view (notes, timer, next slide, controls) for
+    /// the lecturer's screen; the main window shows only the slides. One screen: press P.
+    #[arg(long)]
+    pub presenter: bool,
+    /// Rehearsal: record the actual time per slide in DECK.timings.ron beside the deck.
+    #[arg(long)]
+    pub rehearse: bool,
 }
 
 /// The bundled lecture: `slides/lecture.ron` under the current folder, else in the source tree
@@ -40,6 +47,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             .map_err(|m| anyhow::anyhow!(m))?;
     }
     let title = format!("lectern — {}", session.deck().title);
+    let rehearsal = args.rehearse.then(|| path.with_extension("timings.ron"));
+    let presenter = args.presenter;
     let viewport = egui::ViewportBuilder::default()
         .with_title(&title)
         .with_app_id("lectern")
@@ -58,6 +67,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             let mut app = LecternApp::new(session);
             app.render_state = cc.wgpu_render_state.clone();
             app.watch(&cc.egui_ctx);
+            app.presenter_window = presenter;
+            app.rehearsal_file = rehearsal;
             Ok(Box::new(app))
         }),
     )

@@ -5,8 +5,9 @@ mod load;
 mod model;
 pub mod nav;
 mod session;
+pub mod write_back;
 
 pub use load::{load_deck, parse_deck, parse_deck_file};
-pub use model::{Aspect, Block, Deck, Layout, Slide, Theme};
+pub use model::{Aspect, Block, BookmarkDecl, Deck, Layout, Slide, Theme};
 pub use nav::Nav;
 pub use session::DeckSession;

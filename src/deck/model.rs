@@ -17,6 +17,9 @@ pub struct Deck {
     #[serde(default)]
     pub theme: Theme,
     pub slides: Vec<Slide>,
+    /// Prepared tweak states, recalled with the keys 1…9 during the talk.
+    #[serde(default)]
+    pub bookmarks: Vec<BookmarkDecl>,
     /// The folder the deck was loaded from; image paths are relative to it. Not in the file.
     #[serde(skip)]
     pub base_dir: Option<PathBuf>,
@@ -108,6 +111,20 @@ pub enum Block {
     Widget(WidgetSpec),
     /// Side-by-side columns, each a list of blocks.
     Columns(Vec<Vec<Block>>),
+}
+
+/// A bookmark written in the deck: key `1`…`9` jumps to `slide` and sets its widgets'
+/// parameters, e.g. `(key: 1, slide: "neptune", label: "h = 0.5 blows up", set: [("h", 0.5)])`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct BookmarkDecl {
+    pub key: u8,
+    pub slide: String,
+    #[serde(default)]
+    pub label: String,
+    /// (parameter id, value); a value applies to every widget on the slide with that id
+    /// (booleans: 0 or 1; counts: rounded).
+    #[serde(default)]
+    pub set: Vec<(String, f64)>,
 }
 
 impl Deck {

@@ -6,7 +6,9 @@
 //! rendering of each slot while the lecturer's edit is broken.
 
 mod cache;
+mod fonts;
 pub mod typeset;
 
 pub use cache::{Formula, MathCache, MathView, math_ui};
+pub use fonts::{add_fallback_fonts, install_egui_fallback_fonts};
 pub use typeset::{MathError, MathSyntax, RenderedFormula, latex_to_typst, render_formula};

@@ -51,7 +51,7 @@ fn height(pattern: NormalPattern, u: f32, v: f32) -> f32 {
             // asymmetric ripples: gentle upwind slope, steep lee
             4.0 * (crest + 0.3 * (2.0 * TAU * 6.0 * (u + warp)).sin()) + 3.0 * fbm(u, v, 16, 3, 3)
         }
-        NormalPattern::Bumps => 14.0 * fbm(u, v, 4, 5, 21),
+        NormalPattern::Bumps => 96.0 * fbm(u, v, 4, 5, 21),
         NormalPattern::Planks => {
             let plank = (v * 4.0).fract();
             let groove = if !(0.03..=0.97).contains(&plank) {

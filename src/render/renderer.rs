@@ -234,6 +234,16 @@ impl Renderer {
         self.pipelines.errors()
     }
 
+    /// Fish the instance buffer holds now (it grows with the count, to the next power of two).
+    pub fn fish_capacity(&self) -> usize {
+        self.res.fish_capacity
+    }
+
+    /// Vertices per side of the water grid in use.
+    pub fn water_index_count(&self) -> u32 {
+        self.res.water_index_count
+    }
+
     pub fn output_format(&self) -> wgpu::TextureFormat {
         self.output_format
     }

@@ -67,6 +67,8 @@ pub struct SceneResources {
     pub water_vertices: wgpu::Buffer,
     pub water_indices: wgpu::Buffer,
     pub water_index_count: u32,
+    /// (size in metres, vertices per side) the water grid was built for
+    water_grid_for: (f32, u32),
 }
 
 fn normal_texture(
@@ -240,7 +242,29 @@ impl SceneResources {
                 usage: wgpu::BufferUsages::INDEX,
             }),
             water_index_count: indices.len() as u32,
+            water_grid_for: (scene.water.size, scene.water.resolution),
         }
+    }
+
+    /// Rebuilds the water grid when its size or resolution was changed live (sliders).
+    fn ensure_water_grid(&mut self, device: &wgpu::Device, scene: &Scene) {
+        let want = (scene.water.size, scene.water.resolution.clamp(2, 1024));
+        if want == self.water_grid_for {
+            return;
+        }
+        let (grid, indices) = mesh::water_grid(want.0, want.1);
+        self.water_vertices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("water grid"),
+            contents: bytemuck::cast_slice(&grid),
+            usage: wgpu::BufferUsages::VERTEX,
+        });
+        self.water_indices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("water grid"),
+            contents: bytemuck::cast_slice(&indices),
+            usage: wgpu::BufferUsages::INDEX,
+        });
+        self.water_index_count = indices.len() as u32;
+        self.water_grid_for = want;
     }
 
     fn fish_buffer(device: &wgpu::Device, capacity: usize) -> wgpu::Buffer {
@@ -260,6 +284,7 @@ impl SceneResources {
         scene: &Scene,
         snap: &FrameSnapshot,
     ) {
+        self.ensure_water_grid(device, scene);
         for (res, m) in self.materials.iter().zip(&scene.materials) {
             queue.write_buffer(&res.uniform, 0, bytemuck::bytes_of(&MaterialGpu::from(m)));
         }

@@ -124,7 +124,35 @@ fn diag_at(src: &ShaderSource, line: usize, col: usize, message: String) -> Diag
         return Diagnostic::whole_file(&src.path, message);
     }
     let (file, line) = src.origin(line);
-    Diagnostic::new(file, line, col, message.trim_end().to_string())
+    Diagnostic::new(file, line, col, remap_lines(src, message.trim_end()))
+}
+
+/// naga renders its excerpt with line numbers of the expanded text (includes pasted in):
+/// rewrite `path:L:C` and the `L │` gutter to the lines of the file they came from.
+fn remap_lines(src: &ShaderSource, message: &str) -> String {
+    let path = format!("{}:", src.path.display());
+    message
+        .lines()
+        .map(|l| {
+            if let Some(at) = l.find(&path) {
+                let rest = &l[at + path.len()..];
+                let mut parts = rest.splitn(2, ':');
+                if let (Some(Ok(n)), Some(tail)) =
+                    (parts.next().map(str::parse::<usize>), parts.next())
+                {
+                    let (file, line) = src.origin(n);
+                    return format!("{}{}:{line}:{tail}", &l[..at], file.display());
+                }
+            } else if let Some((num, tail)) = l.split_once(" │")
+                && let Ok(n) = num.trim().parse::<usize>()
+            {
+                let (_, line) = src.origin(n);
+                return format!("{:>width$} │{tail}", line, width = num.len());
+            }
+            l.to_string()
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
 }
 
 /// Load and validate; the expanded, checked source on success.

@@ -11,6 +11,7 @@ use anyhow::Result;
 
 use crate::diag::Diagnostic;
 use crate::reload::{DirWatcher, Settled, read_settled};
+use crate::rigid::Integrator;
 use crate::scene::{self, SceneSim};
 
 use super::frame::{DebugView, RenderSettings};
@@ -37,6 +38,11 @@ pub struct SceneView {
     pub paused: bool,
     step_once: bool,
     show_frame_time: bool,
+    /// the teaching panel as a floating window over the scene (a "controls" button opens it); a
+    /// presenter view that shows [`SceneView::controls_ui`] on its own screen sets
+    /// `controls_button` to false
+    pub controls_open: bool,
+    pub controls_button: bool,
     selected_material: usize,
     output: Option<Output>,
     last_instant: Option<Instant>,
@@ -74,6 +80,8 @@ impl SceneView {
             paused: false,
             step_once: false,
             show_frame_time: true,
+            controls_open: false,
+            controls_button: true,
             selected_material: 0,
             output: None,
             last_instant: None,
@@ -130,7 +138,7 @@ impl SceneView {
         if !self.paused {
             self.sim.step(dt);
         } else if self.step_once {
-            self.sim.step(1.0 / 30.0);
+            self.sim.step_once();
         }
         self.step_once = false;
 
@@ -139,6 +147,21 @@ impl SceneView {
         if response.dragged() {
             let d = response.drag_delta();
             self.sim.camera.orbit(d.x, d.y);
+        }
+        let aspect = rect.width() / rect.height().max(1.0);
+        if response.clicked()
+            && let Some(pos) = response.interact_pointer_pos()
+        {
+            // a click on the water puts the flee point there, half-way down the water column
+            let ndc = glam::Vec2::new(
+                2.0 * (pos.x - rect.left()) / rect.width() - 1.0,
+                1.0 - 2.0 * (pos.y - rect.top()) / rect.height(),
+            );
+            let level = self.sim.scene.water.level;
+            let mid = 0.5 * (level - self.sim.scene.seabed_depth());
+            if let Some(p) = self.sim.camera.pose().pick_plane(ndc, aspect, mid) {
+                self.sim.flee_point = Some(p);
+            }
         }
         if response.hovered() {
             let scroll = ui.input(|i| i.smooth_scroll_delta.y);
@@ -162,12 +185,24 @@ impl SceneView {
         ui.painter().image(out.id, rect, uv, egui::Color32::WHITE);
 
         let painter = ui.painter_at(rect);
+        if let Some(p) = self.sim.flee_point
+            && let Some(ndc) = snap.camera.project(p, aspect)
+        {
+            let at = egui::pos2(
+                rect.left() + (ndc.x + 1.0) * 0.5 * rect.width(),
+                rect.top() + (1.0 - ndc.y) * 0.5 * rect.height(),
+            );
+            painter.circle_stroke(at, 10.0, egui::Stroke::new(2.0, egui::Color32::YELLOW));
+            painter.circle_filled(at, 2.5, egui::Color32::YELLOW);
+        }
         if self.show_frame_time {
             let text = format!(
-                "frame {:.1} ms · render CPU {:.1} ms · t = {:.2} s",
+                "frame {:.1} ms · render CPU {:.1} ms · t = {:.2} s · {} fish · {}",
                 mean(&self.interval_ms),
                 mean(&self.cpu_ms),
-                self.sim.time_secs()
+                self.sim.time_secs(),
+                self.sim.fish_count(),
+                self.sim.integrator().name()
             );
             painter.text(
                 rect.left_top() + egui::vec2(8.0, 8.0),
@@ -188,6 +223,27 @@ impl SceneView {
                 egui::FontId::monospace(12.0),
                 egui::Color32::from_rgb(255, 120, 100),
             );
+        }
+        if self.controls_button {
+            let button = egui::Rect::from_min_size(
+                rect.right_top() + egui::vec2(-88.0, 8.0),
+                egui::vec2(80.0, 24.0),
+            );
+            if ui
+                .put(button, egui::Button::new("controls"))
+                .on_hover_text("scene controls")
+                .clicked()
+            {
+                self.controls_open = !self.controls_open;
+            }
+            let mut open = self.controls_open;
+            egui::Window::new("Scene controls")
+                .open(&mut open)
+                .default_pos(rect.right_top() + egui::vec2(-340.0, 40.0))
+                .default_width(320.0)
+                .vscroll(true)
+                .show(ui.ctx(), |ui| self.controls_ui(ui));
+            self.controls_open &= open;
         }
         if !self.paused {
             ui.ctx().request_repaint();
@@ -274,13 +330,10 @@ impl SceneView {
             self.sim.camera = scene::OrbitCamera::from_scene(&self.sim.scene.camera);
         }
         ui.separator();
+        self.bodies_ui(ui);
+        ui.separator();
+        self.fish_ui(ui);
         let sc = &mut self.sim.scene;
-        ui.heading("Fish");
-        ui.add(
-            egui::Slider::new(&mut sc.school.count, 0..=scene::model::MAX_FISH)
-                .logarithmic(true)
-                .text("count"),
-        );
         ui.separator();
         ui.heading("Material");
         if !sc.materials.is_empty() {
@@ -304,6 +357,8 @@ impl SceneView {
         }
         ui.separator();
         ui.heading("Waves");
+        ui.add(egui::Slider::new(&mut sc.water.size, 4.0..=200.0).text("water patch (m)"));
+        ui.add(egui::Slider::new(&mut sc.water.resolution, 8..=512).text("grid vertices per side"));
         for (i, w) in sc.water.waves.iter_mut().enumerate() {
             ui.collapsing(format!("wave {}", i + 1), |ui| {
                 ui.add(egui::Slider::new(&mut w.amplitude, 0.0..=0.5).text("amplitude (m)"));
@@ -318,6 +373,99 @@ impl SceneView {
             for e in errors {
                 ui.colored_label(egui::Color32::from_rgb(220, 80, 60), e);
             }
+        }
+    }
+}
+
+impl SceneView {
+    /// Rigid bodies: the integrator switch, the step h, drag, and energy / |L| per body.
+    fn bodies_ui(&mut self, ui: &mut egui::Ui) {
+        ui.heading("Floating bodies");
+        let m = &mut self.sim.scene.simulation;
+        ui.horizontal_wrapped(|ui| {
+            for method in Integrator::ALL {
+                ui.selectable_value(&mut m.integrator, method, method.name());
+            }
+        });
+        ui.add(
+            egui::Slider::new(&mut m.body_h_secs, 0.002..=0.25)
+                .logarithmic(true)
+                .text("step h (s)"),
+        );
+        ui.add(egui::Slider::new(&mut m.linear_drag_per_sec, 0.0..=5.0).text("drag (1/s)"));
+        ui.add(
+            egui::Slider::new(&mut m.angular_drag_per_sec, 0.0..=5.0).text("angular drag (1/s)"),
+        );
+        let names: Vec<String> = self
+            .sim
+            .scene
+            .objects
+            .iter()
+            .map(|o| match o {
+                scene::Object::Floating { shape, .. } => match shape {
+                    scene::Shape::Box { .. } => "box",
+                    scene::Shape::Sphere { .. } => "sphere",
+                    scene::Shape::Capsule { .. } => "capsule",
+                }
+                .to_string(),
+                _ => String::new(),
+            })
+            .collect();
+        egui::Grid::new("body readouts")
+            .striped(true)
+            .show(ui, |ui| {
+                for h in [
+                    "body",
+                    "M (kg)",
+                    "E_kin (J)",
+                    "M g y (J)",
+                    "|L| (kg m²/s)",
+                    "resets",
+                ] {
+                    ui.label(h);
+                }
+                ui.end_row();
+                for r in self.sim.readouts() {
+                    ui.label(names.get(r.object_index).cloned().unwrap_or_default());
+                    ui.monospace(format!("{:.1}", r.mass_kg));
+                    ui.monospace(format!("{:.2}", r.kinetic_j));
+                    ui.monospace(format!("{:.2}", r.potential_j));
+                    ui.monospace(format!("{:.3}", r.angular_momentum));
+                    ui.monospace(format!("{}", r.resets));
+                    ui.end_row();
+                }
+            });
+        if ui.button("restart simulation").clicked() {
+            self.sim.restart();
+        }
+    }
+
+    /// The school: count (live; the instance buffer grows), flee point, steering weights.
+    fn fish_ui(&mut self, ui: &mut egui::Ui) {
+        ui.heading("Fish");
+        let p = &mut self.sim.scene.school;
+        ui.add(
+            egui::Slider::new(&mut p.count, 0..=scene::model::MAX_FISH)
+                .logarithmic(true)
+                .text("count"),
+        );
+        ui.add(egui::Slider::new(&mut p.separation_weight, 0.0..=5.0).text("separation"));
+        ui.add(egui::Slider::new(&mut p.alignment_weight, 0.0..=5.0).text("alignment"));
+        ui.add(egui::Slider::new(&mut p.cohesion_weight, 0.0..=5.0).text("cohesion"));
+        ui.add(egui::Slider::new(&mut p.flee_radius, 0.0..=10.0).text("flee radius (m)"));
+        let w = self.sim.scene.simulation.school_half_width;
+        let mut on = self.sim.flee_point.is_some();
+        ui.checkbox(&mut on, "flee point (click on the water to move it)");
+        if on {
+            let mid = 0.5 * (self.sim.scene.water.level - self.sim.scene.seabed_depth());
+            let f = self
+                .sim
+                .flee_point
+                .get_or_insert(glam::Vec3::new(0.0, mid, 0.0));
+            ui.add(egui::Slider::new(&mut f.x, -w..=w).text("flee x (m)"));
+            ui.add(egui::Slider::new(&mut f.z, -w..=w).text("flee z (m)"));
+        } else {
+            self.sim.flee_point = None;
         }
     }
 }

@@ -5,13 +5,13 @@ use std::path::Path;
 
 use crate::diag::Diagnostic;
 
-use super::model::{MAX_FISH, MAX_OBJECTS, MAX_WAVES, Object, Scene, Shape};
+use super::model::{MAX_FISH, MAX_OBJECTS, MAX_WAVES, Object, Scene, Shape, WATER_DENSITY};
 
 /// Parses and validates scene text; `file` only names the source in diagnostics.
 pub fn parse_scene(text: &str, file: &Path) -> Result<Scene, Diagnostic> {
     let scene: Scene = ron::from_str(text).map_err(|e| Diagnostic::from_ron(file, &e))?;
     validate(&scene).map_err(|(field, msg)| {
-        let (line, col) = locate(text, field);
+        let (line, col) = locate(text, field, &msg);
         Diagnostic::new(file, line, col, msg)
     })?;
     Ok(scene)
@@ -29,19 +29,67 @@ pub fn check_file(path: &Path) -> Vec<Diagnostic> {
     load_scene(path).err().into_iter().collect()
 }
 
-/// 1-based position of the first `field:` in the text, or (0, 0).
-fn locate(text: &str, field: &str) -> (usize, usize) {
+/// 1-based position of the `field:` the error is about, or (0, 0). Messages say
+/// `field = VALUE`; of all `field:` occurrences (comments skipped) the one whose written value
+/// equals VALUE wins (the third object's `density`, not the first), else the first one.
+fn locate(text: &str, field: &str, msg: &str) -> (usize, usize) {
     let needle = format!("{field}:");
+    let wanted = value_in_message(msg, field);
+    let mut first = None;
     for (i, line) in text.lines().enumerate() {
-        if let Some(c) = line.find(&needle) {
-            // skip comments
-            if line[..c].contains("//") {
+        let mut from = 0;
+        while let Some(c) = line[from..].find(&needle).map(|c| c + from) {
+            from = c + needle.len();
+            let before = &line[..c];
+            // skip comments, and longer names ending in `field` (`fish_scale` for `scale`)
+            if before.contains("//")
+                || before
+                    .chars()
+                    .last()
+                    .is_some_and(|ch| ch.is_alphanumeric() || ch == '_')
+            {
                 continue;
             }
-            return (i + 1, c + 1);
+            let pos = (i + 1, c + 1);
+            first.get_or_insert(pos);
+            match &wanted {
+                Some(w) if same_value(first_token(&line[from..]), w) => return pos,
+                Some(_) => {}
+                None => return pos,
+            }
         }
     }
-    (0, 0)
+    first.unwrap_or((0, 0))
+}
+
+/// `VALUE` in a message containing `field = VALUE` (up to a space, comma or colon).
+fn value_in_message(msg: &str, field: &str) -> Option<String> {
+    let at = msg.find(&format!("{field} = "))? + field.len() + 3;
+    let v: String = msg[at..]
+        .chars()
+        .take_while(|c| !c.is_whitespace() && *c != ',' && *c != ':')
+        .collect();
+    (!v.is_empty()).then_some(v)
+}
+
+/// The written value after `field:`, up to the next separator.
+fn first_token(rest: &str) -> &str {
+    let rest = rest.trim_start();
+    let end = rest
+        .find(|c: char| c.is_whitespace() || c == ',' || c == ')')
+        .unwrap_or(rest.len());
+    &rest[..end]
+}
+
+/// Same text, or the same number however written (`7800` is `7800.0`; NaN is NaN).
+fn same_value(written: &str, wanted: &str) -> bool {
+    if written == wanted {
+        return true;
+    }
+    match (written.parse::<f64>(), wanted.parse::<f64>()) {
+        (Ok(a), Ok(b)) => a == b || (a.is_nan() && b.is_nan()) || (a as f32) == (b as f32),
+        _ => false,
+    }
 }
 
 type Invalid = (&'static str, String);
@@ -224,7 +272,10 @@ fn validate(s: &Scene) -> Result<(), Invalid> {
     })?;
     for o in &s.objects {
         check(s.material_index(o.material()).is_some(), "material", || {
-            format!("object uses unknown material {:?}", o.material())
+            format!(
+                "material = {:?}: unknown material (no material has that name)",
+                o.material()
+            )
         })?;
         match o {
             Object::Seabed {
@@ -259,12 +310,23 @@ fn validate(s: &Scene) -> Result<(), Invalid> {
             Object::Floating {
                 shape,
                 position,
-                draft,
+                density,
+                tilt_deg,
                 ..
             } => {
-                check(finite(position) && draft.is_finite(), "position", || {
-                    "Floating position and draft must be finite".into()
+                check(finite(position) && tilt_deg.is_finite(), "position", || {
+                    "Floating position and tilt_deg must be finite".into()
                 })?;
+                check(
+                    in_range(*density, 1.0, WATER_DENSITY - 1.0),
+                    "density",
+                    || {
+                        format!(
+                            "Floating density = {density} kg/m³ must be in 1..{WATER_DENSITY} \
+                         (denser than water, it would sink)"
+                        )
+                    },
+                )?;
                 let dims: Vec<f32> = match shape {
                     Shape::Box { size } => size.to_vec(),
                     Shape::Sphere { radius } => vec![*radius],
@@ -321,6 +383,35 @@ fn validate(s: &Scene) -> Result<(), Invalid> {
         weights.iter().all(|&w| in_range(w, -1e3, 1e3)),
         "weight",
         || "school weights must be finite".into(),
+    )?;
+
+    let m = &s.simulation;
+    check(in_range(m.dt_secs, 1e-4, 0.1), "dt_secs", || {
+        format!(
+            "simulation.dt_secs = {} must be in 0.0001..=0.1 s",
+            m.dt_secs
+        )
+    })?;
+    check(in_range(m.body_h_secs, 1e-3, 0.5), "body_h_secs", || {
+        format!(
+            "simulation.body_h_secs = {} must be in 0.001..=0.5 s",
+            m.body_h_secs
+        )
+    })?;
+    check(
+        in_range(m.linear_drag_per_sec, 0.0, 100.0) && in_range(m.angular_drag_per_sec, 0.0, 100.0),
+        "linear_drag_per_sec",
+        || "simulation drags must be in 0..=100 per second".into(),
+    )?;
+    check(
+        in_range(m.school_half_width, 0.5, 1e3),
+        "school_half_width",
+        || {
+            format!(
+                "simulation.school_half_width = {} must be in 0.5..=1000 m",
+                m.school_half_width
+            )
+        },
     )?;
     Ok(())
 }

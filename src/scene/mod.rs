@@ -1,17 +1,17 @@
 //! The water scene: its model as written in `scenes/*.ron`, the per-frame simulation step, and
 //! the immutable per-frame snapshot the renderer reads.
 
+pub mod bodies;
 mod load;
 pub mod model;
 pub mod orbit;
 pub mod sim;
 pub mod snapshot;
-pub mod surface;
 
 pub use load::{check_file, load_scene, parse_scene};
-pub use model::{Material, NormalPattern, Object, Scene, Shape};
+pub use model::{Material, NormalPattern, Object, Scene, Shape, Simulation};
 pub use orbit::OrbitCamera;
-pub use sim::SceneSim;
+pub use sim::{BodyReadout, SceneSim};
 pub use snapshot::{BodyPose, CameraPose, FrameSnapshot};
 
 /// The default scene, relative to the project folder.

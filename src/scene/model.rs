@@ -5,6 +5,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::rigid::Integrator;
 use crate::school::SchoolParams;
 use crate::waves::GerstnerWave;
 
@@ -26,6 +27,40 @@ pub struct Scene {
     pub objects: Vec<Object>,
     #[serde(default)]
     pub school: SchoolParams,
+    #[serde(default)]
+    pub simulation: Simulation,
+}
+
+/// How the scene is stepped: a fixed step for everything (so `render-scene --time T` is
+/// reproducible), the rigid bodies' own step and integrator (switchable live), water drag and
+/// where the fish may swim.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Simulation {
+    /// the fixed simulation step, seconds
+    pub dt_secs: f32,
+    /// the rigid bodies' step h, seconds (a multiple of `dt_secs` or a fraction of it)
+    pub body_h_secs: f32,
+    pub integrator: Integrator,
+    /// linear drag in water per unit mass, 1/s (N per m/s per kg, at full submersion)
+    pub linear_drag_per_sec: f32,
+    /// angular drag per unit of mean inertia, 1/s
+    pub angular_drag_per_sec: f32,
+    /// fish stay within ±this many metres of the origin horizontally
+    pub school_half_width: f32,
+}
+
+impl Default for Simulation {
+    fn default() -> Self {
+        Self {
+            dt_secs: 1.0 / 60.0,
+            body_h_secs: 1.0 / 60.0,
+            integrator: Integrator::Rk4,
+            linear_drag_per_sec: 1.0,
+            angular_drag_per_sec: 1.5,
+            school_half_width: 8.0,
+        }
+    }
 }
 
 /// An orbit camera around `target`.
@@ -139,6 +174,12 @@ fn default_reflectance() -> f32 {
 fn one() -> f32 {
     1.0
 }
+fn default_density() -> f32 {
+    500.0
+}
+
+/// Density of the water the bodies float in, kg/m³.
+pub const WATER_DENSITY: f32 = 1000.0;
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub enum Object {
@@ -158,13 +199,20 @@ pub enum Object {
         radius: f32,
         seed: u32,
     },
-    /// A body floating on the waves (bobbing with the surface it sits on).
+    /// A rigid body floating on the waves: mass and inertia from its mesh (Mirtich), pushed
+    /// by gravity, buoyancy against the Gerstner surface and drag. It starts at rest with its
+    /// centre at the still water level.
     Floating {
         material: String,
         shape: Shape,
+        /// start (x, z), metres
         position: [f32; 2],
-        /// how deep its centre sits below the local surface, metres
-        draft: f32,
+        /// kg/m³; below water's 1000 so it floats (500: half submerged)
+        #[serde(default = "default_density")]
+        density: f32,
+        /// initial tilt about the body's x axis, degrees (it rights itself on the water)
+        #[serde(default)]
+        tilt_deg: f32,
     },
 }
 

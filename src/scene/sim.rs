@@ -1,127 +1,263 @@
-//! The scene's simulation step: time, the fish school, and the floating bodies riding the
-//! waves. It produces a [`FrameSnapshot`] for the renderer and knows nothing of the GPU.
+//! The scene's simulation: the fish school ([`crate::school::School`]) and the floating rigid
+//! bodies ([`crate::rigid`], see [`super::bodies`]) on the Gerstner surface
+//! ([`crate::waves::WaveSum`]), stepped at the scene's fixed `dt_secs`. Time only ever moves in
+//! whole fixed steps, so the state at time T is the same however it was reached: a window
+//! catching up after a slow frame, or `render-scene --time T` stepping from zero.
+//! Produces a [`FrameSnapshot`] for the renderer and knows nothing of the GPU.
 
-use glam::{Quat, Vec3};
+use glam::Vec3;
 
-use crate::school::FishInstance;
+use crate::rigid::Integrator;
+use crate::school::{Aabb, Environment, FishInstance, School};
+use crate::waves::WaveSum;
 
-use super::model::{Object, Scene, Shape};
+use super::bodies::FloatingBody;
+use super::model::{Object, Scene};
 use super::orbit::OrbitCamera;
 use super::snapshot::{BodyPose, FrameSnapshot};
-use super::surface;
+
+/// A window that fell behind catches up by at most this many steps per frame, then drops the
+/// rest (no spiral of death when a frame takes long).
+const MAX_CATCH_UP_STEPS: u32 = 3;
 
 pub struct SceneSim {
     pub scene: Scene,
     pub camera: OrbitCamera,
-    time_secs: f64,
+    /// the point the fish flee from (the lecturer's pointer on the water), world metres
+    pub flee_point: Option<Vec3>,
+    steps: u64,
+    /// real time not yet stepped, seconds
+    pending_secs: f64,
+    waves: WaveSum,
+    school: School,
+    bodies: Vec<FloatingBody>,
+    fish: Vec<FishInstance>,
+}
+
+/// Per-body figures for the presenter panel.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BodyReadout {
+    pub object_index: usize,
+    pub mass_kg: f64,
+    pub kinetic_j: f64,
+    /// M g y, relative to y = 0
+    pub potential_j: f64,
+    pub angular_momentum: f64,
+    pub resets: u32,
 }
 
 impl SceneSim {
     pub fn new(scene: Scene) -> Self {
-        Self {
+        let waves = wave_sum(&scene);
+        let school = School::new(&scene.school, &environment(&scene, &waves, None));
+        let mut sim = Self {
             camera: OrbitCamera::from_scene(&scene.camera),
+            flee_point: None,
+            steps: 0,
+            pending_secs: 0.0,
+            bodies: Vec::new(),
+            fish: Vec::new(),
+            waves,
+            school,
             scene,
-            time_secs: 0.0,
-        }
+        };
+        sim.bodies = make_bodies(&sim.scene);
+        sim.school.fill_instances(&mut sim.fish);
+        sim
+    }
+
+    pub fn dt_secs(&self) -> f64 {
+        self.scene.simulation.dt_secs as f64
     }
 
     pub fn time_secs(&self) -> f64 {
-        self.time_secs
+        self.steps as f64 * self.dt_secs()
     }
 
-    /// Jumps to an absolute time (deterministic renders at `--time T`).
+    pub fn fish_count(&self) -> usize {
+        self.school.len()
+    }
+
+    /// Sets the state to the one at `time_secs` (rounded to whole steps): continues stepping
+    /// if that is ahead, else starts again from t = 0. Deterministic renders at `--time T`.
     pub fn set_time(&mut self, time_secs: f64) {
-        self.time_secs = time_secs;
+        let target = if time_secs.is_finite() && time_secs > 0.0 {
+            (time_secs / self.dt_secs()).round() as u64
+        } else {
+            0
+        };
+        if target < self.steps {
+            self.restart();
+        }
+        while self.steps < target {
+            self.tick();
+        }
+        self.pending_secs = 0.0;
     }
 
+    /// Back to t = 0: fish and bodies respawn from the scene (camera kept).
+    pub fn restart(&mut self) {
+        self.waves = wave_sum(&self.scene);
+        self.school = School::new(
+            &self.scene.school,
+            &environment(&self.scene, &self.waves, None),
+        );
+        self.bodies = make_bodies(&self.scene);
+        self.steps = 0;
+        self.pending_secs = 0.0;
+        self.school.fill_instances(&mut self.fish);
+    }
+
+    /// Advances by real time `dt_secs` in whole fixed steps (the remainder waits for the
+    /// next call).
     pub fn step(&mut self, dt_secs: f64) {
-        self.time_secs += dt_secs.clamp(0.0, 0.1);
+        if !(dt_secs.is_finite() && dt_secs > 0.0) {
+            return;
+        }
+        self.pending_secs += dt_secs;
+        let dt = self.dt_secs();
+        let mut n = 0;
+        while self.pending_secs >= dt && n < MAX_CATCH_UP_STEPS {
+            self.tick();
+            self.pending_secs -= dt;
+            n += 1;
+        }
+        if n == MAX_CATCH_UP_STEPS {
+            self.pending_secs = 0.0;
+        }
     }
 
-    /// A reloaded scene replaces the model; camera and time stay where the lecturer left them.
+    /// Exactly one fixed step, whatever real time passed ("step" while paused).
+    pub fn step_once(&mut self) {
+        self.tick();
+    }
+
+    /// One fixed step. Live edits to the scene (fish count, school weights, waves) are
+    /// picked up here.
+    fn tick(&mut self) {
+        self.waves = wave_sum(&self.scene);
+        let env = environment(&self.scene, &self.waves, self.flee_point);
+        if self.school.params() != &self.scene.school {
+            self.school.set_params(&self.scene.school, &env);
+        }
+        let dt = self.dt_secs();
+        self.school.step(dt as f32, &env);
+        self.steps += 1;
+        let t = self.time_secs();
+        let method = self.scene.simulation.integrator;
+        for b in &mut self.bodies {
+            b.advance(t, &self.waves, &self.scene.simulation, method);
+        }
+        self.school.fill_instances(&mut self.fish);
+    }
+
+    /// A reloaded scene replaces the model; camera and time stay where the lecturer left
+    /// them, the fish swim on (a new count adds or removes fish), and the floating bodies are
+    /// rebuilt only if their objects changed.
     pub fn replace_scene(&mut self, scene: Scene) {
+        let floating = |s: &Scene| -> Vec<Object> {
+            s.objects
+                .iter()
+                .filter(|o| matches!(o, Object::Floating { .. }))
+                .cloned()
+                .collect()
+        };
+        let rebuild = floating(&scene) != floating(&self.scene);
+        let time = self.time_secs();
         self.scene = scene;
+        // keep the clock when the step changes: same time, counted in the new steps
+        self.steps = (time / self.dt_secs()).round() as u64;
+        self.waves = wave_sum(&self.scene);
+        let env = environment(&self.scene, &self.waves, self.flee_point);
+        self.school.set_params(&self.scene.school, &env);
+        if rebuild {
+            self.bodies = make_bodies(&self.scene);
+            for b in &mut self.bodies {
+                b.body.time = time;
+            }
+        }
+        self.school.fill_instances(&mut self.fish);
+    }
+
+    pub fn integrator(&self) -> Integrator {
+        self.scene.simulation.integrator
+    }
+
+    pub fn readouts(&self) -> Vec<BodyReadout> {
+        self.bodies
+            .iter()
+            .map(|b| {
+                let (kinetic_j, potential_j, angular_momentum) = b.readout();
+                BodyReadout {
+                    object_index: b.object_index,
+                    mass_kg: b.body.constants.mass,
+                    kinetic_j,
+                    potential_j,
+                    angular_momentum,
+                    resets: b.resets,
+                }
+            })
+            .collect()
     }
 
     pub fn snapshot(&self) -> FrameSnapshot {
-        let t = self.time_secs as f32;
         FrameSnapshot {
-            time_secs: t,
+            time_secs: self.time_secs() as f32,
             camera: self.camera.pose(),
-            fish: school_instances(&self.scene, t),
-            bodies: body_poses(&self.scene, t),
+            fish: self.fish.clone(),
+            bodies: self
+                .bodies
+                .iter()
+                .map(|b| {
+                    let (position, orientation) = b.mesh_pose();
+                    BodyPose {
+                        object_index: b.object_index,
+                        position,
+                        orientation,
+                    }
+                })
+                .collect(),
         }
     }
 }
 
-/// Deterministic hash in [0, 1).
-fn hash01(i: u32, salt: u32) -> f32 {
-    let mut x = i.wrapping_mul(0x9E37_79B9) ^ salt.wrapping_mul(0x85EB_CA6B);
-    x ^= x >> 16;
-    x = x.wrapping_mul(0x7FEB_352D);
-    x ^= x >> 15;
-    x = x.wrapping_mul(0x846C_A68B);
-    x ^= x >> 16;
-    (x >> 8) as f32 / (1u32 << 24) as f32
+fn wave_sum(scene: &Scene) -> WaveSum {
+    WaveSum::new(scene.water.waves.clone(), scene.water.level)
 }
 
-/// A milling school (fish circling a common centre, the torus formation of real schools),
-/// evaluated in closed form so any time renders without stepping from zero.
-pub fn school_instances(scene: &Scene, t: f32) -> Vec<FishInstance> {
-    let p = &scene.school;
-    let depth = scene.seabed_depth();
-    let level = scene.water.level;
-    let salt = p.seed as u32;
-    (0..p.count as u32)
-        .map(|i| {
-            let r = 1.5 + 3.0 * hash01(i, salt);
-            let speed = p.min_speed + (p.max_speed - p.min_speed) * hash01(i, salt + 1);
-            let phase0 = std::f32::consts::TAU * hash01(i, salt + 2);
-            let y0 = level - depth * (0.3 + 0.45 * hash01(i, salt + 3));
-            let theta = phase0 + speed / r * t;
-            let bob = 0.15 * (0.7 * t + 6.0 * hash01(i, salt + 4)).sin();
-            let position = Vec3::new(r * theta.cos(), y0 + bob, r * theta.sin());
-            // counter-clockwise seen from above: heading is d/dθ of the circle
-            let heading = Vec3::new(-theta.sin(), 0.0, theta.cos());
-            let orientation = Quat::from_rotation_arc(Vec3::X, heading);
-            FishInstance {
-                position,
-                orientation,
-                scale: p.fish_scale * (0.8 + 0.4 * hash01(i, salt + 5)),
-                tail_phase: 8.0 * t * (0.8 + 0.4 * hash01(i, salt + 6)) + phase0 * 3.0,
-            }
-        })
-        .collect()
-}
-
-/// Floating bodies sit on the surface at their (x, z), tilted with its normal.
-pub fn body_poses(scene: &Scene, t: f32) -> Vec<BodyPose> {
+fn make_bodies(scene: &Scene) -> Vec<FloatingBody> {
     scene
         .objects
         .iter()
         .enumerate()
-        .filter_map(|(i, o)| match o {
-            Object::Floating {
-                position,
-                draft,
-                shape,
-                ..
-            } => {
-                let (h, n) = surface::height_and_normal(&scene.water, position[0], position[1], t);
-                let half_height = match shape {
-                    Shape::Box { size } => size[1] * 0.5,
-                    Shape::Sphere { radius } => *radius,
-                    Shape::Capsule { radius, .. } => *radius,
-                };
-                let tilt = Quat::from_rotation_arc(Vec3::Y, n);
-                let yaw = Quat::from_rotation_y(0.7 * i as f32 + 0.05 * t);
-                Some(BodyPose {
-                    object_index: i,
-                    position: Vec3::new(position[0], h + half_height * 0.3 - draft, position[1]),
-                    orientation: tilt * yaw,
-                })
-            }
+        .filter_map(|(i, o)| FloatingBody::from_object(i, o, scene.water.level))
+        .collect()
+}
+
+/// Where the fish swim: a box `school_half_width` wide around the origin, from the seabed's
+/// highest dune up to the water (the school keeps below the lowest trough).
+pub fn environment<'a>(
+    scene: &Scene,
+    waves: &'a WaveSum,
+    flee_point: Option<Vec3>,
+) -> Environment<'a> {
+    let w = scene.simulation.school_half_width;
+    let seabed = scene
+        .objects
+        .iter()
+        .find_map(|o| match o {
+            Object::Seabed { depth, relief, .. } => Some(-depth + relief),
             _ => None,
         })
-        .collect()
+        .unwrap_or(scene.water.level - 4.0);
+    let bounds = Aabb::new(
+        Vec3::new(-w, seabed, -w),
+        Vec3::new(w, scene.water.level, w),
+    );
+    Environment {
+        bounds,
+        surface: Some(waves),
+        seabed_height: seabed,
+        flee_point,
+    }
 }

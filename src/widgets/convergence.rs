@@ -57,7 +57,7 @@ const ERR_FLOOR: f64 = 1e-13;
 pub fn errors(spec: &ConvergenceSpec, m: MethodId) -> Vec<(f64, f64)> {
     let sys = spec.field.system();
     let exact = spec.field.exact(0.0, spec.x0, spec.t_end);
-    (0..spec.levels.clamp(2, 16))
+    (0..spec.levels.clamp(2, 12))
         .filter_map(|k| {
             let h = spec.h_max / 2f64.powi(k as i32);
             let n = steps_for(0.0, spec.t_end, h, 1 << 20);
@@ -162,7 +162,7 @@ impl SlideWidget for Convergence {
                     .logarithmic(true)
                     .text("largest h"),
             );
-            ui.add(egui::Slider::new(&mut self.spec.levels, 3..=14).text("halvings"));
+            ui.add(egui::Slider::new(&mut self.spec.levels, 3..=12).text("halvings"));
             ui.checkbox(
                 &mut self.spec.typo,
                 egui::RichText::new("notes' RK4 typo")
@@ -187,7 +187,17 @@ impl SlideWidget for Convergence {
                 ui.colored_label(style::method_color(*m), egui::RichText::new(txt).strong());
             }
         });
-        log_axes_plot("convergence", "step h", "global error").show(ui, |p| {
+        let h_min = data
+            .iter()
+            .flat_map(|d| d.1.iter().map(|p| p.0))
+            .fold(f64::INFINITY, f64::min);
+        let plot = log_axes_plot("convergence", "step h", "global error");
+        let plot = if h_min.is_finite() {
+            plot.include_x(h_min.log10() - 0.6)
+        } else {
+            plot
+        };
+        plot.show(ui, |p| {
             for (m, pts, slope) in data {
                 let color = style::method_color(*m);
                 let v: Vec<[f64; 2]> = pts
@@ -201,17 +211,18 @@ impl SlideWidget for Convergence {
                         .width(style::PATH_WIDTH),
                 );
                 p.points(Points::new(m.name(), v.clone()).color(color).radius(5.0));
-                if let (Some(s), Some(first)) = (slope, v.first()) {
+                // label at the smallest h, left of the line, in room the x range leaves for it
+                if let (Some(s), Some(last)) = (slope, v.last()) {
                     p.text(
                         Text::new(
                             format!("{} slope", m.name()),
-                            PlotPoint::new(first[0], first[1]),
-                            egui::RichText::new(format!(" slope {s:.2}"))
+                            PlotPoint::new(last[0], last[1]),
+                            egui::RichText::new(format!("slope {s:.2}  "))
                                 .size(22.0)
                                 .strong()
                                 .color(color),
                         )
-                        .anchor(egui::Align2::LEFT_CENTER),
+                        .anchor(egui::Align2::RIGHT_CENTER),
                     );
                 }
             }
@@ -221,7 +232,7 @@ impl SlideWidget for Convergence {
     fn params(&mut self) -> Vec<Param<'_>> {
         vec![
             Param::f64_log("h_max", "largest h", &mut self.spec.h_max, 0.05, 1.0),
-            Param::usize("levels", "halvings", &mut self.spec.levels, 3, 14),
+            Param::usize("levels", "halvings", &mut self.spec.levels, 3, 12),
             Param::bool("typo", "notes' RK4 typo", &mut self.spec.typo),
         ]
     }

@@ -138,7 +138,7 @@ fn yes() -> bool {
 }
 
 /// Steps a frame may take per method; beyond it the view lags rather than stalls the UI.
-const MAX_STEPS_PER_FRAME: usize = 4000;
+const MAX_STEPS_PER_FRAME: usize = 1000;
 const T_MAX: f64 = 600.0;
 
 struct Run {
@@ -262,8 +262,8 @@ fn paint_box(
         .iter()
         .filter_map(|(idx, n)| {
             let n_view = view_from_body * *n;
-            if n_view.z < 0.0 {
-                return None; // facing away (camera looks down −z)
+            if n_view.z < 0.02 {
+                return None; // facing away or edge-on (camera looks down −z)
             }
             let pts: Vec<egui::Pos2> = idx
                 .iter()
@@ -280,8 +280,10 @@ fn paint_box(
                 .map(|&i| (view_from_body * corner(i)).z)
                 .sum::<f64>();
             // the ±y faces (the intermediate axis) carry the method's colour, so the flip shows
-            let base = if n.y != 0.0 {
+            let base = if n.y > 0.0 {
                 accent
+            } else if n.y < 0.0 {
+                accent.lerp_to_gamma(egui::Color32::WHITE, 0.6)
             } else {
                 egui::Color32::from_gray(200)
             };
@@ -296,12 +298,17 @@ fn paint_box(
         })
         .collect();
     drawn.sort_by(|a, b| a.0.total_cmp(&b.0));
+    // Fill, then outline with plain segments: a stroked sliver polygon grows miter spikes.
+    let edge = egui::Stroke::new(1.5, egui::Color32::from_gray(40));
     for (_, pts, c) in drawn {
         painter.add(egui::Shape::convex_polygon(
-            pts,
+            pts.clone(),
             c,
-            egui::Stroke::new(1.5, egui::Color32::from_gray(40)),
+            egui::Stroke::NONE,
         ));
+        for k in 0..pts.len() {
+            painter.line_segment([pts[k], pts[(k + 1) % pts.len()]], edge);
+        }
     }
 }
 
@@ -310,16 +317,12 @@ impl SlideWidget for RigidBodyView {
         style::projector_text(ui);
         ui.horizontal(|ui| {
             if ui
-                .button(if self.spec.playing {
-                    "⏸ pause"
-                } else {
-                    "▶ play"
-                })
+                .button(if self.spec.playing { "pause" } else { "play" })
                 .clicked()
             {
                 self.spec.playing = !self.spec.playing;
             }
-            if ui.button("⏮ restart").clicked() {
+            if ui.button("restart").clicked() {
                 self.spec.t = 0.0;
             }
             ui.add(
@@ -342,7 +345,7 @@ impl SlideWidget for RigidBodyView {
         let dims = DVec3::new(ib + ic - ia, ia + ic - ib, ia + ib - ic)
             .max(DVec3::splat(0.02))
             .powf(0.5);
-        let dims = dims.max(DVec3::splat(0.15 * dims.max_element()));
+        let dims = dims.max(DVec3::splat(0.3 * dims.max_element()));
         let states = self.states();
         let n = states.len().max(1) as f32;
         let w = (ui.available_width() - ui.spacing().item_spacing.x * (n - 1.0)) / n;

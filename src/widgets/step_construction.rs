@@ -134,6 +134,8 @@ impl StepConstruction {
 impl SlideWidget for StepConstruction {
     fn ui(&mut self, ui: &mut egui::Ui) {
         style::projector_text(ui);
+        // stay inside a column: the control row must not widen the plot past its share
+        ui.set_max_width(ui.available_width());
         let m = match self.spec.method {
             MethodId::Euler | MethodId::Midpoint => self.spec.method,
             _ => MethodId::Rk4,
@@ -154,7 +156,7 @@ impl SlideWidget for StepConstruction {
         }
         self.spec.h = self.spec.h.clamp(H_RANGE.0, H_RANGE.1);
         self.spec.stage = self.spec.stage.min(n);
-        ui.horizontal(|ui| {
+        ui.horizontal_wrapped(|ui| {
             for c in [MethodId::Euler, MethodId::Midpoint, MethodId::Rk4] {
                 let text = egui::RichText::new(c.name())
                     .color(style::method_color(c))
@@ -164,6 +166,9 @@ impl SlideWidget for StepConstruction {
                     self.spec.stage = 0;
                 }
             }
+        });
+        ui.horizontal(|ui| {
+            ui.spacing_mut().slider_width = 120.0;
             ui.add(egui::Slider::new(&mut self.spec.h, H_RANGE.0..=H_RANGE.1).text("h"));
             ui.add(egui::Slider::new(&mut self.spec.stage, 0..=n).text("stage  [ ]"));
         });
@@ -191,6 +196,7 @@ impl SlideWidget for StepConstruction {
             ui.label(format!("stage {stage} of {n}: press ] to continue"));
         }
         Plot::new("step-construction")
+            .width(ui.available_width())
             .allow_drag(false)
             .allow_zoom(false)
             .allow_scroll(false)

@@ -32,6 +32,11 @@ pub const PATH_WIDTH: f32 = 3.0;
 /// Makes text in `ui` large enough for the back row (applies to this ui and its children).
 pub fn projector_text(ui: &mut egui::Ui) {
     use egui::{FontId, TextStyle};
+    // Inside a slide the renderer has already sized text to the canvas (app::theme::CANVAS_STYLE
+    // marks it), so a 4K projector and a laptop window show the same proportions: keep that.
+    if crate::app::theme::is_canvas_style(ui.style()) {
+        return;
+    }
     let s = ui.style_mut();
     s.text_styles
         .insert(TextStyle::Body, FontId::proportional(20.0));
