@@ -9,6 +9,7 @@ pub mod expr;
 pub mod fixed;
 pub mod implicit;
 pub mod method;
+pub mod native;
 pub mod problem;
 pub mod solve;
 pub mod stability;
