@@ -20,7 +20,7 @@ use differential_equations::prelude::{
     ControlFlag, ExplicitRungeKutta, IVP, Interpolation, ODE, Solout, Solution as DeSolution,
 };
 use lectern::ode::problem::Problem;
-use lectern::ode::study::{max_error, reference};
+use lectern::ode::study::{cost_at_error, max_error, reference};
 use lectern::ode::{
     Adaptive, FixedSystem, Method, Scheme, System, solve_adaptive, solve_fixed_final, solve_fixed_n,
 };
@@ -356,26 +356,10 @@ fn our_runs<S: System>(
     });
 }
 
-/// log-log interpolation of a curve's time at a given error (None outside its range).
+/// A curve's time at a given error, interpolated in log-log (None outside its range).
 fn time_at(curve: &Curve, error: f64) -> Option<f64> {
-    let mut pts: Vec<(f64, f64)> = curve
-        .points
-        .iter()
-        .filter(|p| p.0 > 0.0 && p.0.is_finite())
-        .map(|p| (p.0.ln(), p.1.ln()))
-        .collect();
-    pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let e = error.ln();
-    pts.windows(2)
-        .find(|w| w[0].0 <= e && e <= w[1].0)
-        .map(|w| {
-            let s = if w[1].0 > w[0].0 {
-                (e - w[0].0) / (w[1].0 - w[0].0)
-            } else {
-                0.0
-            };
-            (w[0].1 + s * (w[1].1 - w[0].1)).exp()
-        })
+    let pts: Vec<(f64, f64)> = curve.points.iter().map(|p| (p.0, p.1)).collect();
+    cost_at_error(&pts, error)
 }
 
 struct Case {
