@@ -116,6 +116,11 @@ impl<const N: usize> Solout<f64, [f64; N]> for KeepLast {
 
 /// One solver run: final time, final state, f-evaluations.
 type Run = (f64, Vec<f64>, u64);
+type FixedRun = Run;
+
+/// Every measurement is repeated in this many rounds spread over the run, keeping each
+/// point's minimum, so a burst of load on the shared machine does not decide a ratio.
+const ROUNDS: usize = 3;
 
 /// Minimum wall time over repeats (at least 3, until ~30 ms are spent, at most 200).
 fn timed(mut f: impl FnMut() -> Run) -> (Run, f64) {
@@ -503,6 +508,17 @@ fn run_case(name: &'static str, title: &'static str) -> Case {
     }
 }
 
+/// Keeps the faster time of each point (errors and f-evaluations are deterministic).
+fn merge_min(case: &mut Case, again: Case) {
+    for (c, a) in case.curves.iter_mut().zip(again.curves) {
+        assert_eq!(c.label, a.label);
+        for (p, q) in c.points.iter_mut().zip(a.points) {
+            assert_eq!((p.0.to_bits(), p.2), (q.0.to_bits(), q.2), "{}", c.label);
+            p.1 = p.1.min(q.1);
+        }
+    }
+}
+
 fn plots(case: &Case, dir: &Path) {
     let series = |f: &dyn Fn(&(f64, f64, u64)) -> f64| -> Vec<plot::Series> {
         case.curves
@@ -603,6 +619,43 @@ fn ratio_table(out: &mut String, case: &Case) -> Ratios {
     ratios
 }
 
+/// "ours / peer" nanoseconds per RK4 step at the finest step, and the f-evaluation ratio of
+/// our RK4 to the fastest adaptive peer at error 1e-9, as two table cells.
+fn work_facts(case: &Case) -> String {
+    let per_step = |c: &Curve| {
+        c.points
+            .iter()
+            .max_by_key(|p| p.2)
+            .map(|p| p.1 / (p.2 as f64 / 4.0) * 1e9)
+    };
+    let fixed = case.curves.iter().find(|c| c.label == FIXED_RK4).unwrap();
+    let peer = case
+        .curves
+        .iter()
+        .filter(|c| is_peer_rk4(c))
+        .filter_map(per_step)
+        .fold(f64::INFINITY, f64::min);
+    let evals = |c: &Curve| {
+        let pts: Vec<(f64, f64)> = c.points.iter().map(|p| (p.0, p.2 as f64)).collect();
+        cost_at_error(&pts, 1e-9)
+    };
+    let ada = case
+        .curves
+        .iter()
+        .filter(|c| is_peer_adaptive(c))
+        .filter_map(evals)
+        .fold(f64::INFINITY, f64::min);
+    let ours = evals(fixed).unwrap_or(f64::NAN);
+    format!(
+        "{:.1} / {:.1} | {:.0} ÷ {:.0} = {:.1}×",
+        per_step(fixed).unwrap_or(f64::NAN),
+        peer,
+        ours,
+        ada,
+        ours / ada
+    )
+}
+
 fn range(v: impl Iterator<Item = f64>) -> String {
     let v: Vec<f64> = v.collect();
     if v.is_empty() {
@@ -662,8 +715,6 @@ fn expression_vs_native(out: &mut String) -> (f64, f64, f64) {
         });
         s / 100_000.0
     };
-    let e = per_eval(&problem);
-    let n = per_eval(&Kepler);
     let h = TAU / 20_000.0;
     let solve = |sys: &dyn System| {
         timed(|| {
@@ -680,26 +731,27 @@ fn expression_vs_native(out: &mut String) -> (f64, f64, f64) {
         })
         .1
     };
-    let se = solve(&problem);
-    let sn = solve(&Kepler);
     let x0n = [0.4, 0.0, 0.0, 2.0];
-    let fe = timed(|| {
-        let sol = solve_fixed_n(
-            &ExprFixed(&problem),
-            0.0,
-            black_box(x0n),
-            h,
-            TAU,
-            f64::INFINITY,
-        );
+    let fast = |sys: &dyn Fn(f64, [f64; 4]) -> FixedRun| timed(|| sys(h, black_box(x0n))).1;
+    let fast_expr = |h: f64, x0: [f64; 4]| {
+        let sol = solve_fixed_n(&ExprFixed(&problem), 0.0, x0, h, TAU, f64::INFINITY);
         (sol.t, sol.x.to_vec(), sol.f_evals)
-    })
-    .1;
-    let fnat = timed(|| {
-        let sol = solve_fixed_n(&Kepler, 0.0, black_box(x0n), h, TAU, f64::INFINITY);
+    };
+    let fast_native = |h: f64, x0: [f64; 4]| {
+        let sol = solve_fixed_n(&Kepler, 0.0, x0, h, TAU, f64::INFINITY);
         (sol.t, sol.x.to_vec(), sol.f_evals)
-    })
-    .1;
+    };
+    // the expression evaluator is sensitive to what shares the core (branch prediction), so
+    // interleave expression and native measurements over several rounds and keep the minima
+    let [mut e, mut n, mut se, mut sn, mut fe, mut fnat] = [f64::INFINITY; 6];
+    for _ in 0..ROUNDS {
+        e = e.min(per_eval(&problem));
+        n = n.min(per_eval(&Kepler));
+        se = se.min(solve(&problem));
+        sn = sn.min(solve(&Kepler));
+        fe = fe.min(fast(&fast_expr));
+        fnat = fnat.min(fast(&fast_native));
+    }
     writeln!(
         out,
         "| Kepler right-hand side | RON expression | native Rust | expression ÷ native |"
@@ -805,11 +857,18 @@ fn main() {
     // `cargo bench` passes --bench; criterion's own flags are handled in criterion_part
     let dir = Path::new("docs/benchmarks");
     std::fs::create_dir_all(dir).unwrap();
-    let cases = [
-        run_case("harmonic", "Harmonic oscillator, t = 10"),
-        run_case("kepler", "Kepler e = 0.6, one period"),
-        run_case("pendulum", "Pendulum from 179°, t = 10"),
+    let specs = [
+        ("harmonic", "Harmonic oscillator, t = 10"),
+        ("kepler", "Kepler e = 0.6, one period"),
+        ("pendulum", "Pendulum from 179°, t = 10"),
     ];
+    // rounds over all cases, so each round is spread over the whole run
+    let mut cases: Vec<Case> = specs.iter().map(|(n, t)| run_case(n, t)).collect();
+    for _ in 1..ROUNDS {
+        for (case, (n, t)) in cases.iter_mut().zip(&specs) {
+            merge_min(case, run_case(n, t));
+        }
+    }
     let mut body = String::new();
     let mut summary = Vec::new();
     for case in &cases {
@@ -827,7 +886,7 @@ fn main() {
              lectern `[f64; N]` RK4 time, so > 1 means lectern is faster:\n"
         )
         .unwrap();
-        summary.push((case.title, ratio_table(&mut body, case)));
+        summary.push((case.title, ratio_table(&mut body, case), work_facts(case)));
         points_table(&mut body, case);
     }
     writeln!(
@@ -848,7 +907,7 @@ fn main() {
         "Generated by `CARGO_TARGET_DIR=/work/target-release nice cargo bench --bench work_precision -- --no-criterion` \
          (release build, one run for every figure on this page; machine: {} CPU threads, shared with other \
          jobs, so absolute times are noisy). Each point is the minimum wall time of repeated \
-         solves (at least 3, up to ~30 ms in total). Error is the max-norm difference of the \
+         solves (at least 3, up to ~30 ms in total, in each of {ROUNDS} rounds spread over the run). Error is the max-norm difference of the \
          final state from the exact solution (oscillator), the initial state after exactly one \
          period (Kepler), or a lectern Dormand–Prince rtol 1e-13 reference (pendulum).\n\n\
          Solvers, all with the same native right-hand side: **lectern RK4 [f64; N]** is the \
@@ -873,11 +932,11 @@ fn main() {
     .unwrap();
     writeln!(
         md,
-        "| problem | vs fastest peer RK4 | vs fastest peer adaptive (Dopri5 / Dop853) | target met? |"
+        "| problem | vs fastest peer RK4 | vs fastest peer adaptive (Dopri5 / Dop853) | target met? | ns per RK4 step: ours / fastest peer RK4 | f-evals at error 1e-9: our RK4 ÷ fastest peer adaptive |"
     )
     .unwrap();
-    writeln!(md, "|---|---:|---:|---|").unwrap();
-    for (title, r) in &summary {
+    writeln!(md, "|---|---:|---:|---|---:|---:|").unwrap();
+    for (title, r, facts) in &summary {
         let rk4 = range(r.rows.iter().filter_map(|x| x.1));
         let ada = range(r.rows.iter().filter_map(|x| x.2));
         let met_rk4 = r.rows.iter().filter_map(|x| x.1).all(|v| v >= 1.5);
@@ -888,8 +947,21 @@ fn main() {
             (false, true) => "**missed** against peer RK4",
             (false, false) => "**missed**",
         };
-        writeln!(md, "| {title} | {rk4} | {ada} | {verdict} |").unwrap();
+        writeln!(md, "| {title} | {rk4} | {ada} | {verdict} | {facts} |").unwrap();
     }
+    writeln!(
+        md,
+        "\nWhy: at equal error every RK4 takes the same steps, so the ratio against a peer's \
+         RK4 is a ratio of per-step cost. The fast path removes what the general driver and the \
+         peers add per step (recording, allocation, dynamic dispatch), but what remains is the \
+         latency of RK4's chain of dependent operations (stage after stage, and a square root \
+         and divisions per Kepler evaluation, a `sin` per pendulum evaluation), which a \
+         careful peer pays too. Against the peers' adaptive 5th/8th-order methods the gap is \
+         the number of f-evaluations (last column): no per-step speed-up of a 4th-order \
+         fixed-step method makes that up at tight tolerances. Lectern's own Dormand–Prince \
+         (general driver) is the method to use there; it is plotted with the rest.\n"
+    )
+    .unwrap();
     writeln!(
         md,
         "\nTarget 2: expression-defined RHS within **3×** of the same RHS as native Rust (Kepler): \
