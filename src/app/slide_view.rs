@@ -26,7 +26,12 @@ pub(crate) struct WidgetSlot {
 impl SlideState {
     /// The widget at block path `path` (indices into the body, then into columns), made from
     /// `spec` if it is new or its spec in the file changed.
-    pub(crate) fn widget(&mut self, path: &[usize], spec: &WidgetSpec) -> &mut dyn SlideWidget {
+    pub(crate) fn widget(
+        &mut self,
+        path: &[usize],
+        spec: &WidgetSpec,
+        base_dir: Option<&std::path::Path>,
+    ) -> &mut dyn SlideWidget {
         let slot = self
             .widgets
             .entry(path.to_vec())
@@ -34,13 +39,13 @@ impl SlideState {
                 if slot.spec != *spec {
                     *slot = WidgetSlot {
                         spec: spec.clone(),
-                        widget: spec.instantiate(),
+                        widget: spec.instantiate_in(base_dir),
                     };
                 }
             })
             .or_insert_with(|| WidgetSlot {
                 spec: spec.clone(),
-                widget: spec.instantiate(),
+                widget: spec.instantiate_in(base_dir),
             });
         slot.widget.as_mut()
     }
