@@ -40,6 +40,9 @@ pub fn parse_size(s: &str) -> Result<[u32; 2], String> {
 pub fn run(args: Args) -> anyhow::Result<()> {
     let path = args.deck.unwrap_or_else(super::present::default_deck);
     let deck = load_deck(&path).map_err(|d| anyhow::anyhow!("{d}"))?;
+    // A still image cannot wait for a background study: work-precision runs on this thread
+    // (timings then from a fixed cost per f-evaluation, so exports are reproducible).
+    crate::widgets::work_precision::DETERMINISTIC.store(true, std::sync::atomic::Ordering::Relaxed);
     let mut renderer = OffscreenRenderer::new()?;
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create {}", args.out.display()))?;
