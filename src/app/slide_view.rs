@@ -206,6 +206,11 @@ impl DeckState {
         self.slides.entry(slide.key().to_owned()).or_default()
     }
 
+    /// The state of `slide` if it was ever drawn or tweaked.
+    pub fn existing(&mut self, slide: &Slide) -> Option<&mut SlideState> {
+        self.slides.get_mut(slide.key())
+    }
+
     /// After a reload: forget the states of slides that no longer exist. Widgets whose spec
     /// changed are recreated lazily by [`SlideState::widget`].
     pub fn retain_deck(&mut self, deck: &Deck) {
