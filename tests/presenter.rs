@@ -454,7 +454,7 @@ fn a_broken_tweaks_file_names_its_line_and_stale_entries_are_reported() {
     let deck = parse_deck(&deck_text("0.1", "3.0", ""), Path::new("t.ron")).unwrap();
     assert_eq!(tweaks.unknown_slides(&deck), vec!["gone".to_owned()]);
     let mut state = SlideState::default();
-    let problems = tweaks.apply(&deck.slides[1], &mut state);
+    let problems = tweaks.apply(&deck, 1, &mut state);
     assert_eq!(problems.len(), 1, "{problems:?}");
     assert_eq!(state.param(&[0], H), Some(ParamSnapshot::F64(0.5)));
 }

@@ -78,12 +78,18 @@ impl TweakFile {
             .map_err(|e| Diagnostic::from_ron(path, &e))
     }
 
-    /// Sets the recorded values of `slide` on `state`. Returns a message per value that could
-    /// not be applied (slide changed since: no such widget or parameter, wrong kind).
-    pub fn apply(&self, slide: &Slide, state: &mut SlideState) -> Vec<String> {
+    /// Sets the recorded values of slide `index` of `deck` on `state`. Returns a message per
+    /// value that could not be applied (slide changed since: no such widget or parameter,
+    /// wrong kind).
+    pub fn apply(&self, deck: &Deck, index: usize, state: &mut SlideState) -> Vec<String> {
+        let Some(slide) = deck.slides.get(index) else {
+            return Vec::new();
+        };
         let Some(entries) = self.slides.get(slide.key()) else {
             return Vec::new();
         };
+        // Widgets made now must find the deck's files (tableaux) as a draw would.
+        state.set_base_dir(deck.base_dir.as_deref());
         state.ensure_widgets(slide);
         let order = widget_paths(slide);
         let mut problems = Vec::new();

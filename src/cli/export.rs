@@ -52,13 +52,16 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     for key in tweaks.unknown_slides(&deck) {
         eprintln!("lectern: warning: the tweaks are for slide {key:?}, which the deck lacks");
     }
+    // A still image cannot wait for a background study: work-precision runs on this thread
+    // (timings then from a fixed cost per f-evaluation, so exports are reproducible).
+    crate::widgets::work_precision::DETERMINISTIC.store(true, std::sync::atomic::Ordering::Relaxed);
     let mut renderer = OffscreenRenderer::new()?;
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create {}", args.out.display()))?;
     let digits = deck.slides.len().to_string().len().max(2);
     for index in 0..deck.slides.len() {
         let mut state = SlideState::default();
-        for problem in tweaks.apply(&deck.slides[index], &mut state) {
+        for problem in tweaks.apply(&deck, index, &mut state) {
             eprintln!("lectern: warning: {problem}");
         }
         let image = renderer.render_slide(&deck, index, &mut state, args.size)?;
