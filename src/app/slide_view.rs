@@ -69,6 +69,11 @@ impl SlideState {
         &self.problems
     }
 
+    /// Where the deck's files are (for widgets made before the slide is first drawn).
+    pub fn set_base_dir(&mut self, dir: Option<&std::path::Path>) {
+        self.base_dir = dir.map(std::path::Path::to_path_buf);
+    }
+
     /// Makes every widget of `slide` (so tweaks can be set before it is first drawn).
     pub fn ensure_widgets(&mut self, slide: &Slide) {
         fn walk(state: &mut SlideState, blocks: &[Block], path: &mut Vec<usize>) {
@@ -213,6 +218,11 @@ pub struct DeckState {
 impl DeckState {
     pub fn slide(&mut self, slide: &Slide) -> &mut SlideState {
         self.slides.entry(slide.key().to_owned()).or_default()
+    }
+
+    /// The state of `slide` if it was ever drawn or tweaked.
+    pub fn existing(&mut self, slide: &Slide) -> Option<&mut SlideState> {
+        self.slides.get_mut(slide.key())
     }
 
     /// After a reload: forget the states of slides that no longer exist. Widgets whose spec
