@@ -16,10 +16,14 @@ use std::path::Path;
 use std::time::{Duration, Instant};
 
 use criterion::Criterion;
-use differential_equations::prelude::{ExplicitRungeKutta, IVP, ODE};
+use differential_equations::prelude::{
+    ControlFlag, ExplicitRungeKutta, IVP, Interpolation, ODE, Solout, Solution as DeSolution,
+};
 use lectern::ode::problem::Problem;
-use lectern::ode::study::{max_error, reference};
-use lectern::ode::{Adaptive, Method, Scheme, System, solve_adaptive, solve_fixed_final};
+use lectern::ode::study::{cost_at_error, max_error, reference};
+use lectern::ode::{
+    Adaptive, FixedSystem, Method, Scheme, System, solve_adaptive, solve_fixed_final, solve_fixed_n,
+};
 use ode_solvers::SVector;
 
 /// One native right-hand side, implemented for us and for both peers.
@@ -40,6 +44,14 @@ macro_rules! native_problem {
             #[inline]
             fn rhs(&self, t: f64, x: &[f64], d: &mut [f64]) {
                 Self::f(t, x, d)
+            }
+        }
+        impl FixedSystem<$n> for $name {
+            #[inline(always)]
+            fn rhs(&self, t: f64, y: &[f64; $n]) -> [f64; $n] {
+                let mut d = [0.0; $n];
+                Self::f(t, y, &mut d);
+                d
             }
         }
         impl ode_solvers::System<f64, SVector<f64, $n>> for $name {
@@ -74,8 +86,41 @@ native_problem!(Pendulum, 2, |_t, y, d| {
     d[1] = -y[0].sin();
 });
 
+/// A `differential-equations` output strategy that keeps only the latest point, so that the
+/// peer, like lectern, does no per-step recording (its default records every step).
+#[derive(Clone, Copy)]
+struct KeepLast;
+
+impl<const N: usize> Solout<f64, [f64; N]> for KeepLast {
+    fn solout<I>(
+        &mut self,
+        t_curr: f64,
+        _t_prev: f64,
+        y_curr: &[f64; N],
+        _y_prev: &[f64; N],
+        _interpolator: &mut I,
+        solution: &mut DeSolution<f64, [f64; N]>,
+    ) -> ControlFlag<f64, [f64; N]>
+    where
+        I: Interpolation<f64, [f64; N]> + ?Sized,
+    {
+        if solution.t.is_empty() {
+            solution.push(t_curr, *y_curr);
+        } else {
+            solution.t[0] = t_curr;
+            solution.y[0] = *y_curr;
+        }
+        ControlFlag::Continue
+    }
+}
+
 /// One solver run: final time, final state, f-evaluations.
 type Run = (f64, Vec<f64>, u64);
+type FixedRun = Run;
+
+/// Every measurement is repeated in this many rounds spread over the run, keeping each
+/// point's minimum, so a burst of load on the shared machine does not decide a ratio.
+const ROUNDS: usize = 3;
 
 /// Minimum wall time over repeats (at least 3, until ~30 ms are spent, at most 200).
 fn timed(mut f: impl FnMut() -> Run) -> (Run, f64) {
@@ -121,6 +166,7 @@ macro_rules! peer_runs {
             let ((t, x, n), s) = timed(|| {
                 let sol = IVP::ode(&sys, 0.0, t_end, x0)
                     .method(ExplicitRungeKutta::rk4(h).max_steps(10_000_000))
+                    .solout(KeepLast)
                     .solve()
                     .unwrap();
                 let (t, y) = sol.last().unwrap();
@@ -189,6 +235,7 @@ macro_rules! peer_runs {
                             .atol(tol)
                             .max_steps(10_000_000),
                     )
+                    .solout(KeepLast)
                     .solve()
                     .unwrap();
                 let (t, y) = sol.last().unwrap();
@@ -203,6 +250,7 @@ macro_rules! peer_runs {
                             .atol(tol)
                             .max_steps(10_000_000),
                     )
+                    .solout(KeepLast)
                     .solve()
                     .unwrap();
                 let (t, y) = sol.last().unwrap();
@@ -226,6 +274,35 @@ macro_rules! peer_runs {
         }
     }};
 }
+
+/// Our fixed-size fast path (`ode::fixed`, state `[f64; N]`, RHS inlined).
+fn fixed_rk4_curve<const N: usize, S: FixedSystem<N>>(
+    sys: &S,
+    x0: [f64; N],
+    t_end: f64,
+    hs: &[f64],
+    err: &dyn Fn(f64, &[f64]) -> f64,
+) -> Curve {
+    let points = hs
+        .iter()
+        .map(|&h| {
+            let ((t, x, n), s) = timed(|| {
+                let sol = solve_fixed_n(sys, 0.0, black_box(x0), h, t_end, f64::INFINITY);
+                (sol.t, sol.x.to_vec(), sol.f_evals)
+            });
+            (err(t, &x), s, n)
+        })
+        .collect();
+    Curve {
+        label: FIXED_RK4.into(),
+        ours: true,
+        points,
+    }
+}
+
+/// Labels of our two RK4 paths.
+const FIXED_RK4: &str = "lectern RK4 [f64; N]";
+const GENERAL_RK4: &str = "lectern RK4 (slices)";
 
 fn our_runs<S: System>(
     sys: &S,
@@ -251,7 +328,11 @@ fn our_runs<S: System>(
             })
             .collect();
         curves.push(Curve {
-            label: format!("lectern {}{label}", m.label()),
+            label: if m == Method::Rk4 {
+                GENERAL_RK4.to_string()
+            } else {
+                format!("lectern {}{label}", m.label())
+            },
             ours: true,
             points,
         });
@@ -280,26 +361,10 @@ fn our_runs<S: System>(
     });
 }
 
-/// log-log interpolation of a curve's time at a given error (None outside its range).
+/// A curve's time at a given error, interpolated in log-log (None outside its range).
 fn time_at(curve: &Curve, error: f64) -> Option<f64> {
-    let mut pts: Vec<(f64, f64)> = curve
-        .points
-        .iter()
-        .filter(|p| p.0 > 0.0 && p.0.is_finite())
-        .map(|p| (p.0.ln(), p.1.ln()))
-        .collect();
-    pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let e = error.ln();
-    pts.windows(2)
-        .find(|w| w[0].0 <= e && e <= w[1].0)
-        .map(|w| {
-            let s = if w[1].0 > w[0].0 {
-                (e - w[0].0) / (w[1].0 - w[0].0)
-            } else {
-                0.0
-            };
-            (w[0].1 + s * (w[1].1 - w[0].1)).exp()
-        })
+    let pts: Vec<(f64, f64)> = curve.points.iter().map(|p| (p.0, p.1)).collect();
+    cost_at_error(&pts, error)
 }
 
 struct Case {
@@ -335,7 +400,9 @@ fn run_case(name: &'static str, title: &'static str) -> Case {
             max_error(x, &exact_at(t))
         }
     };
-    let hs: Vec<f64> = (5..=14).map(|k| t_end / (1u64 << k) as f64).collect();
+    // the oscillator and pendulum already reach 1e-3 with 32 steps: start coarser there
+    let k0 = if name == "kepler" { 5 } else { 3 };
+    let hs: Vec<f64> = (k0..=14).map(|k| t_end / (1u64 << k) as f64).collect();
     let tols: Vec<f64> = (3..=13).map(|k| 10f64.powi(-k)).collect();
     let mut curves = Vec::new();
     match name {
@@ -350,6 +417,10 @@ fn run_case(name: &'static str, title: &'static str) -> Case {
                 &err,
                 &mut curves,
             );
+            curves.insert(
+                0,
+                fixed_rk4_curve(&Oscillator, [1.0, 0.0], t_end, &hs, &err),
+            );
             peer_runs!(Oscillator, 2, [1.0, 0.0], t_end, &hs, &tols, err, curves);
         }
         "kepler" => {
@@ -362,6 +433,10 @@ fn run_case(name: &'static str, title: &'static str) -> Case {
                 &tols,
                 &err,
                 &mut curves,
+            );
+            curves.insert(
+                0,
+                fixed_rk4_curve(&Kepler, [0.4, 0.0, 0.0, 2.0], t_end, &hs, &err),
             );
             // the same RK4 on the expression-defined right-hand side from the RON file
             let points = hs
@@ -384,7 +459,7 @@ fn run_case(name: &'static str, title: &'static str) -> Case {
                 })
                 .collect();
             curves.push(Curve {
-                label: "lectern RK4 (RON expr.)".into(),
+                label: "lectern RK4 (slices, RON expr.)".into(),
                 ours: true,
                 points,
             });
@@ -410,6 +485,10 @@ fn run_case(name: &'static str, title: &'static str) -> Case {
                 &err,
                 &mut curves,
             );
+            curves.insert(
+                0,
+                fixed_rk4_curve(&Pendulum, [179f64.to_radians(), 0.0], t_end, &hs, &err),
+            );
             peer_runs!(
                 Pendulum,
                 2,
@@ -426,6 +505,17 @@ fn run_case(name: &'static str, title: &'static str) -> Case {
         name,
         title,
         curves,
+    }
+}
+
+/// Keeps the faster time of each point (errors and f-evaluations are deterministic).
+fn merge_min(case: &mut Case, again: Case) {
+    for (c, a) in case.curves.iter_mut().zip(again.curves) {
+        assert_eq!(c.label, a.label);
+        for (p, q) in c.points.iter_mut().zip(a.points) {
+            assert_eq!((p.0.to_bits(), p.2), (q.0.to_bits(), q.2), "{}", c.label);
+            p.1 = p.1.min(q.1);
+        }
     }
 }
 
@@ -460,52 +550,120 @@ fn plots(case: &Case, dir: &Path) {
     .unwrap();
 }
 
-fn ratio_table(out: &mut String, case: &Case) {
-    let ours = case
-        .curves
+/// The fastest of the curves whose label passes `pick` at a given error: (label, time).
+fn fastest_at<'a>(
+    case: &'a Case,
+    error: f64,
+    pick: impl Fn(&Curve) -> bool,
+) -> Option<(&'a str, f64)> {
+    case.curves
         .iter()
-        .find(|c| c.label == "lectern RK4")
-        .unwrap();
-    writeln!(out, "| error | lectern RK4 (µs) | fastest peer at that error | its time (µs) | peer / ours | peer RK4 / our RK4 |").unwrap();
-    writeln!(out, "|---:|---:|---|---:|---:|---:|").unwrap();
+        .filter(|c| pick(c))
+        .filter_map(|c| time_at(c, error).map(|t| (c.label.as_str(), t)))
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+}
+
+fn is_peer_rk4(c: &Curve) -> bool {
+    !c.ours && c.label.ends_with("RK4")
+}
+
+fn is_peer_adaptive(c: &Curve) -> bool {
+    !c.ours && !c.label.ends_with("RK4")
+}
+
+/// Speed ratios (peer time ÷ our time; > 1 means lectern is faster) at equal error.
+#[derive(Default)]
+struct Ratios {
+    /// (error, vs fastest peer RK4, vs fastest peer adaptive method)
+    rows: Vec<(f64, Option<f64>, Option<f64>)>,
+}
+
+fn ratio_table(out: &mut String, case: &Case) -> Ratios {
+    let fixed = case.curves.iter().find(|c| c.label == FIXED_RK4).unwrap();
+    let general = case.curves.iter().find(|c| c.label == GENERAL_RK4).unwrap();
+    let mut ratios = Ratios::default();
+    writeln!(
+        out,
+        "| error | lectern RK4 [f64; N] (µs) | lectern RK4 slices (µs) | fastest peer RK4 | its time (µs) | peer RK4 ÷ ours | fastest peer adaptive | its time (µs) | peer adaptive ÷ ours |"
+    )
+    .unwrap();
+    writeln!(out, "|---:|---:|---:|---|---:|---:|---|---:|---:|").unwrap();
     for k in [3, 5, 7, 9, 11] {
         let e = 10f64.powi(-k);
-        let Some(t_ours) = time_at(ours, e) else {
+        let Some(t_ours) = time_at(fixed, e) else {
+            writeln!(out, "| 1e-{k} | (not reached) | | | | | | | |").unwrap();
             continue;
         };
-        let best = case
-            .curves
-            .iter()
-            .filter(|c| !c.ours)
-            .filter_map(|c| time_at(c, e).map(|t| (t, c)))
-            .min_by(|a, b| a.0.total_cmp(&b.0));
-        let rk4_peers: Vec<f64> = case
-            .curves
-            .iter()
-            .filter(|c| !c.ours && c.label.ends_with("RK4"))
-            .filter_map(|c| time_at(c, e))
-            .collect();
-        let rk4_best = rk4_peers.iter().cloned().fold(f64::INFINITY, f64::min);
-        match best {
-            Some((t, c)) => writeln!(
-                out,
-                "| 1e-{k} | {:.2} | {} | {:.2} | {:.2}× | {:.2}× |",
-                t_ours * 1e6,
-                c.label,
-                t * 1e6,
-                t / t_ours,
-                rk4_best / t_ours
-            )
-            .unwrap(),
-            None => writeln!(
-                out,
-                "| 1e-{k} | {:.2} | (no peer reaches it) | | | |",
-                t_ours * 1e6
-            )
-            .unwrap(),
-        }
+        let t_general = time_at(general, e)
+            .map(|t| format!("{:.2}", t * 1e6))
+            .unwrap_or_default();
+        let rk4 = fastest_at(case, e, is_peer_rk4);
+        let ada = fastest_at(case, e, is_peer_adaptive);
+        let cells = |p: Option<(&str, f64)>| match p {
+            Some((label, t)) => format!("{label} | {:.2} | **{:.2}×**", t * 1e6, t / t_ours),
+            None => "(no peer reaches it) | | ".into(),
+        };
+        writeln!(
+            out,
+            "| 1e-{k} | {:.2} | {t_general} | {} | {} |",
+            t_ours * 1e6,
+            cells(rk4),
+            cells(ada)
+        )
+        .unwrap();
+        ratios
+            .rows
+            .push((e, rk4.map(|p| p.1 / t_ours), ada.map(|p| p.1 / t_ours)));
     }
     writeln!(out).unwrap();
+    ratios
+}
+
+/// "ours / peer" nanoseconds per RK4 step at the finest step, and the f-evaluation ratio of
+/// our RK4 to the fastest adaptive peer at error 1e-9, as two table cells.
+fn work_facts(case: &Case) -> String {
+    let per_step = |c: &Curve| {
+        c.points
+            .iter()
+            .max_by_key(|p| p.2)
+            .map(|p| p.1 / (p.2 as f64 / 4.0) * 1e9)
+    };
+    let fixed = case.curves.iter().find(|c| c.label == FIXED_RK4).unwrap();
+    let peer = case
+        .curves
+        .iter()
+        .filter(|c| is_peer_rk4(c))
+        .filter_map(per_step)
+        .fold(f64::INFINITY, f64::min);
+    let evals = |c: &Curve| {
+        let pts: Vec<(f64, f64)> = c.points.iter().map(|p| (p.0, p.2 as f64)).collect();
+        cost_at_error(&pts, 1e-9)
+    };
+    let ada = case
+        .curves
+        .iter()
+        .filter(|c| is_peer_adaptive(c))
+        .filter_map(evals)
+        .fold(f64::INFINITY, f64::min);
+    let ours = evals(fixed).unwrap_or(f64::NAN);
+    format!(
+        "{:.1} / {:.1} | {:.0} ÷ {:.0} = {:.1}×",
+        per_step(fixed).unwrap_or(f64::NAN),
+        peer,
+        ours,
+        ada,
+        ours / ada
+    )
+}
+
+fn range(v: impl Iterator<Item = f64>) -> String {
+    let v: Vec<f64> = v.collect();
+    if v.is_empty() {
+        return "–".into();
+    }
+    let lo = v.iter().cloned().fold(f64::INFINITY, f64::min);
+    let hi = v.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+    format!("{lo:.2}× – {hi:.2}×")
 }
 
 fn points_table(out: &mut String, case: &Case) {
@@ -528,7 +686,21 @@ fn points_table(out: &mut String, case: &Case) {
     writeln!(out, "\n</details>\n").unwrap();
 }
 
-fn expression_vs_native(out: &mut String) {
+/// The Kepler problem file seen as a fixed-size system: the expression evaluator behind the
+/// fast driver, to separate the cost of the evaluator from the cost of the driver.
+struct ExprFixed<'a>(&'a Problem);
+
+impl FixedSystem<4> for ExprFixed<'_> {
+    #[inline]
+    fn rhs(&self, t: f64, x: &[f64; 4]) -> [f64; 4] {
+        let mut d = [0.0; 4];
+        System::rhs(self.0, t, x, &mut d);
+        d
+    }
+}
+
+/// Expression RHS ÷ native RHS: (per evaluation, general RK4 driver, fixed-size driver).
+fn expression_vs_native(out: &mut String) -> (f64, f64, f64) {
     let problem = Problem::load("slides/problems/kepler.ron").unwrap();
     let x0 = problem.initial.clone();
     let per_eval = |sys: &dyn System| {
@@ -543,8 +715,6 @@ fn expression_vs_native(out: &mut String) {
         });
         s / 100_000.0
     };
-    let e = per_eval(&problem);
-    let n = per_eval(&Kepler);
     let h = TAU / 20_000.0;
     let solve = |sys: &dyn System| {
         timed(|| {
@@ -561,17 +731,36 @@ fn expression_vs_native(out: &mut String) {
         })
         .1
     };
-    let se = solve(&problem);
-    let sn = solve(&Kepler);
+    let x0n = [0.4, 0.0, 0.0, 2.0];
+    let fast = |sys: &dyn Fn(f64, [f64; 4]) -> FixedRun| timed(|| sys(h, black_box(x0n))).1;
+    let fast_expr = |h: f64, x0: [f64; 4]| {
+        let sol = solve_fixed_n(&ExprFixed(&problem), 0.0, x0, h, TAU, f64::INFINITY);
+        (sol.t, sol.x.to_vec(), sol.f_evals)
+    };
+    let fast_native = |h: f64, x0: [f64; 4]| {
+        let sol = solve_fixed_n(&Kepler, 0.0, x0, h, TAU, f64::INFINITY);
+        (sol.t, sol.x.to_vec(), sol.f_evals)
+    };
+    // the expression evaluator is sensitive to what shares the core (branch prediction), so
+    // interleave expression and native measurements over several rounds and keep the minima
+    let [mut e, mut n, mut se, mut sn, mut fe, mut fnat] = [f64::INFINITY; 6];
+    for _ in 0..ROUNDS {
+        e = e.min(per_eval(&problem));
+        n = n.min(per_eval(&Kepler));
+        se = se.min(solve(&problem));
+        sn = sn.min(solve(&Kepler));
+        fe = fe.min(fast(&fast_expr));
+        fnat = fnat.min(fast(&fast_native));
+    }
     writeln!(
         out,
-        "| Kepler right-hand side | RON expression | native closure | ratio |"
+        "| Kepler right-hand side | RON expression | native Rust | expression ÷ native |"
     )
     .unwrap();
     writeln!(out, "|---|---:|---:|---:|").unwrap();
     writeln!(
         out,
-        "| one f-evaluation (ns) | {:.1} | {:.1} | {:.2}× |",
+        "| one f-evaluation through `&dyn System` (ns) | {:.1} | {:.1} | {:.2}× |",
         e * 1e9,
         n * 1e9,
         e / n
@@ -579,12 +768,28 @@ fn expression_vs_native(out: &mut String) {
     .unwrap();
     writeln!(
         out,
-        "| RK4, 20000 steps (ms) | {:.3} | {:.3} | {:.2}× |\n",
+        "| RK4 (slices driver), 20000 steps (ms) | {:.3} | {:.3} | {:.2}× |",
         se * 1e3,
         sn * 1e3,
         se / sn
     )
     .unwrap();
+    writeln!(
+        out,
+        "| RK4 (`[f64; 4]` driver), 20000 steps (ms) | {:.3} | {:.3} | {:.2}× |\n",
+        fe * 1e3,
+        fnat * 1e3,
+        fe / fnat
+    )
+    .unwrap();
+    writeln!(
+        out,
+        "Worst case for the expression path: RON expression on the slices driver ÷ native RHS on \
+         the `[f64; 4]` fast path = **{:.2}×**.\n",
+        se / fnat
+    )
+    .unwrap();
+    (e / n, se / sn, fe / fnat)
 }
 
 fn criterion_part() {
@@ -608,6 +813,9 @@ fn criterion_part() {
                 f64::INFINITY,
             )
         })
+    });
+    g.bench_function("lectern_fixed_size", |b| {
+        b.iter(|| solve_fixed_n(&Kepler, 0.0, black_box(x0), h, TAU, f64::INFINITY))
     });
     let problem = Problem::load("slides/problems/kepler.ron").unwrap();
     g.bench_function("lectern_ron_expression", |b| {
@@ -635,6 +843,7 @@ fn criterion_part() {
         b.iter(|| {
             IVP::ode(&Kepler, 0.0, TAU, black_box(x0))
                 .method(ExplicitRungeKutta::rk4(h).max_steps(10_000_000))
+                .solout(KeepLast)
                 .solve()
                 .unwrap()
         })
@@ -648,11 +857,45 @@ fn main() {
     // `cargo bench` passes --bench; criterion's own flags are handled in criterion_part
     let dir = Path::new("docs/benchmarks");
     std::fs::create_dir_all(dir).unwrap();
-    let cases = [
-        run_case("harmonic", "Harmonic oscillator, t = 10"),
-        run_case("kepler", "Kepler e = 0.6, one period"),
-        run_case("pendulum", "Pendulum from 179°, t = 10"),
+    let specs = [
+        ("harmonic", "Harmonic oscillator, t = 10"),
+        ("kepler", "Kepler e = 0.6, one period"),
+        ("pendulum", "Pendulum from 179°, t = 10"),
     ];
+    // rounds over all cases, so each round is spread over the whole run
+    let mut cases: Vec<Case> = specs.iter().map(|(n, t)| run_case(n, t)).collect();
+    for _ in 1..ROUNDS {
+        for (case, (n, t)) in cases.iter_mut().zip(&specs) {
+            merge_min(case, run_case(n, t));
+        }
+    }
+    let mut body = String::new();
+    let mut summary = Vec::new();
+    for case in &cases {
+        plots(case, dir);
+        writeln!(body, "## {}\n", case.title).unwrap();
+        writeln!(
+            body,
+            "![error vs time](ode-{}-time.png)\n\n![error vs f-evaluations](ode-{}-evals.png)\n",
+            case.name, case.name
+        )
+        .unwrap();
+        writeln!(
+            body,
+            "Time at equal error (log-log interpolation along each curve); ratios are peer time ÷ \
+             lectern `[f64; N]` RK4 time, so > 1 means lectern is faster:\n"
+        )
+        .unwrap();
+        summary.push((case.title, ratio_table(&mut body, case), work_facts(case)));
+        points_table(&mut body, case);
+    }
+    writeln!(
+        body,
+        "## Expression-defined right-hand side against a native closure\n"
+    )
+    .unwrap();
+    let (per_eval, general, fixed) = expression_vs_native(&mut body);
+
     let mut md = String::new();
     writeln!(
         md,
@@ -661,42 +904,79 @@ fn main() {
     .unwrap();
     writeln!(
         md,
-        "Generated by `CARGO_TARGET_DIR=/work/target-release cargo bench --bench work_precision` \
-         (release build; machine: {} CPU threads, shared with other jobs). Each point is the \
-         minimum wall time of repeated solves (at least 3, up to ~30 ms in total). Error is the max-norm \
-         difference of the final state from the exact solution (oscillator), the initial \
-         state after exactly one period (Kepler), or a lectern Dormand–Prince rtol 1e-13 \
-         reference (pendulum). Peers: `ode_solvers` 0.6 (nalgebra `SVector` state; its default controller parameters, sparse output = every accepted step) and \
-         `differential-equations` 0.7 (`[f64; N]` state), both with the same native \
-         right-hand sides; both record every step in their solution object (their normal \
-         API), lectern keeps only the final state. Fixed steps: 2^5 … 2^14 per run; \
-         tolerances rtol = atol = 1e-3 … 1e-13.\n",
+        "Generated by `CARGO_TARGET_DIR=/work/target-release nice cargo bench --bench work_precision -- --no-criterion` \
+         (release build, one run for every figure on this page; machine: {} CPU threads, shared with other \
+         jobs, so absolute times are noisy). Each point is the minimum wall time of repeated \
+         solves (at least 3, up to ~30 ms in total, in each of {ROUNDS} rounds spread over the run). Error is the max-norm difference of the \
+         final state from the exact solution (oscillator), the initial state after exactly one \
+         period (Kepler), or a lectern Dormand–Prince rtol 1e-13 reference (pendulum).\n\n\
+         Solvers, all with the same native right-hand side: **lectern RK4 [f64; N]** is the \
+         fixed-size fast path `ode::fixed::solve_fixed_n` (state `[f64; N]`, f inlined, \
+         bit-identical to the general RK4); **lectern RK4 (slices)** is the general driver \
+         `solve_fixed_final` (run-time n, f behind `&dyn System`-compatible slices); both keep only \
+         the final state. `ode_solvers` 0.6 (nalgebra `SVector` state) records every step \
+         (its RK4 cannot do otherwise; Dopri5/Dop853 use sparse output = every accepted step, \
+         its default controller parameters). `differential-equations` 0.7 (`[f64; N]` state) \
+         runs with a keep-the-last-point output handler, so it records nothing per step either. \
+         Fixed steps: 2^3 (Kepler 2^5) … 2^14 per run; tolerances rtol = atol = 1e-3 … 1e-13.\n",
         std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1)
     )
     .unwrap();
-    for case in &cases {
-        plots(case, dir);
-        writeln!(md, "## {}\n", case.title).unwrap();
-        writeln!(
-            md,
-            "![error vs time](ode-{}-time.png)\n\n![error vs f-evaluations](ode-{}-evals.png)\n",
-            case.name, case.name
-        )
-        .unwrap();
-        writeln!(
-            md,
-            "Time at equal error (log-log interpolation along each curve):\n"
-        )
-        .unwrap();
-        ratio_table(&mut md, case);
-        points_table(&mut md, case);
+    writeln!(md, "## Summary (issue #3 targets)\n").unwrap();
+    writeln!(
+        md,
+        "Target 1: lectern's fixed-step RK4 at least **1.5×** faster than the fastest peer at \
+         equal error. Ratios = peer time ÷ lectern `[f64; N]` RK4 time at errors 1e-3, 1e-5, \
+         1e-7, 1e-9, 1e-11 (range over those errors):\n"
+    )
+    .unwrap();
+    writeln!(
+        md,
+        "| problem | vs fastest peer RK4 | vs fastest peer adaptive (Dopri5 / Dop853) | target met? | ns per RK4 step: ours / fastest peer RK4 | f-evals at error 1e-9: our RK4 ÷ fastest peer adaptive |"
+    )
+    .unwrap();
+    writeln!(md, "|---|---:|---:|---|---:|---:|").unwrap();
+    for (title, r, facts) in &summary {
+        let rk4 = range(r.rows.iter().filter_map(|x| x.1));
+        let ada = range(r.rows.iter().filter_map(|x| x.2));
+        let met_rk4 = r.rows.iter().filter_map(|x| x.1).all(|v| v >= 1.5);
+        let met_ada = r.rows.iter().filter_map(|x| x.2).all(|v| v >= 1.5);
+        let verdict = match (met_rk4, met_ada) {
+            (true, true) => "yes",
+            (true, false) => "against peer RK4 only; **missed** against adaptive peers",
+            (false, true) => "**missed** against peer RK4",
+            (false, false) => "**missed**",
+        };
+        writeln!(md, "| {title} | {rk4} | {ada} | {verdict} | {facts} |").unwrap();
     }
     writeln!(
         md,
-        "## Expression-defined right-hand side against a native closure\n"
+        "\nWhy: at equal error every RK4 takes the same steps, so the ratio against a peer's \
+         RK4 is a ratio of per-step cost. The fast path removes what the general driver and the \
+         peers add per step (recording, allocation, dynamic dispatch), but what remains is the \
+         latency of RK4's chain of dependent operations (stage after stage, and a square root \
+         and divisions per Kepler evaluation, a `sin` per pendulum evaluation), which a \
+         careful peer pays too. Against the peers' adaptive 5th/8th-order methods the gap is \
+         the number of f-evaluations (last column): no per-step speed-up of a 4th-order \
+         fixed-step method makes that up at tight tolerances. Lectern's own Dormand–Prince \
+         (general driver) is the method to use there; it is plotted with the rest.\n"
     )
     .unwrap();
-    expression_vs_native(&mut md);
+    writeln!(
+        md,
+        "\nTarget 2: expression-defined RHS within **3×** of the same RHS as native Rust (Kepler): \
+         {general:.2}× on the general RK4 driver, {fixed:.2}× on the `[f64; 4]` driver, {per_eval:.2}× \
+         per evaluation — {}.\n",
+        if general <= 3.0 && fixed <= 3.0 {
+            "met"
+        } else if general <= 3.0 {
+            "met on the same driver; missed against the fast path"
+        } else {
+            "**missed**"
+        }
+    )
+    .unwrap();
+    md.push_str(&body);
     std::fs::write(dir.join("ode.md"), &md).unwrap();
     println!("{md}");
     if !args.iter().any(|a| a == "--no-criterion") {

@@ -12,7 +12,7 @@ pub struct Series {
     pub points: Vec<(f64, f64)>,
 }
 
-pub const PALETTE: [[u8; 3]; 10] = [
+pub const PALETTE: [[u8; 3]; 12] = [
     [31, 119, 180],
     [214, 39, 40],
     [44, 160, 44],
@@ -23,6 +23,8 @@ pub const PALETTE: [[u8; 3]; 10] = [
     [23, 190, 207],
     [188, 189, 34],
     [80, 80, 80],
+    [0, 0, 0],
+    [128, 128, 0],
 ];
 
 struct Canvas<'f> {

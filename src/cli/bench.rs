@@ -7,9 +7,13 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::time::Instant;
 
+use crate::ode::fixed::AsSystem;
+use crate::ode::native;
 use crate::ode::problem::Problem;
-use crate::ode::study::{Point, Sweep, max_error, reference, work_precision};
-use crate::ode::{FnSystem, Method, Scheme, System, solve_fixed_final};
+use crate::ode::study::{
+    Point, Sweep, cost_at_error, max_error, reference, work_precision, work_precision_fixed,
+};
+use crate::ode::{FixedSystem, FnSystem, Method, Scheme, System, solve_fixed_final};
 
 /// Work-precision report of the integrators.
 #[derive(Debug, clap::Args)]
@@ -61,19 +65,41 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             .map_err(|d| anyhow::anyhow!("{d}"))?;
         let exact = final_reference(&p, t_end);
         // h so that the run has 2^k steps, from 64 to 65536
-        let hs = (6..=16).map(|k| t_end / (1u64 << k) as f64).collect();
-        let points = work_precision(
+        let hs: Vec<f64> = (6..=16).map(|k| t_end / (1u64 << k) as f64).collect();
+        let mut points = work_precision(
             &p,
             p.t0,
             &p.initial,
             t_end,
             &exact,
             &Sweep {
-                hs,
+                hs: hs.clone(),
                 ..sweep.clone()
             },
         );
+        // the same RK4 on a native right-hand side: general driver and fixed-size fast path
+        let native = match name {
+            "harmonic" => native_points(
+                native::Harmonic::from_problem(&p),
+                &p,
+                t_end,
+                &exact,
+                &hs,
+                args.repeats,
+            ),
+            "kepler" => native_points(native::Kepler, &p, t_end, &exact, &hs, args.repeats),
+            _ => native_points(
+                native::Pendulum::from_problem(&p),
+                &p,
+                t_end,
+                &exact,
+                &hs,
+                args.repeats,
+            ),
+        };
+        points.extend(native?);
         writeln!(report, "## {} (t_end = {t_end:.4})\n", p.name)?;
+        write_equal_error(&mut report, &points)?;
         write_table(&mut report, &points)?;
     }
     writeln!(
@@ -100,6 +126,93 @@ pub fn final_reference(p: &Problem, t_end: f64) -> Vec<f64> {
     } else {
         reference(p, p.t0, &p.initial, t_end)
     }
+}
+
+/// Labels of the native-RHS rows.
+const RK4_NATIVE: &str = "rk4 native (slices)";
+const RK4_FIXED: &str = "rk4 native [f64; N]";
+
+/// RK4 on a native RHS through the general driver and through the fixed-size fast path.
+fn native_points<const N: usize, S: FixedSystem<N> + Copy>(
+    sys: S,
+    p: &Problem,
+    t_end: f64,
+    exact: &[f64],
+    hs: &[f64],
+    repeats: usize,
+) -> anyhow::Result<Vec<Point>> {
+    let x0: [f64; N] = p
+        .initial
+        .as_slice()
+        .try_into()
+        .map_err(|_| anyhow::anyhow!("{}: expected {N} initial values", p.path.display()))?;
+    let sweep = Sweep {
+        methods: vec![Method::Rk4],
+        hs: hs.to_vec(),
+        tols: Vec::new(),
+        repeats,
+    };
+    let mut out = work_precision(
+        &AsSystem::<N, S>(sys),
+        p.t0,
+        &p.initial,
+        t_end,
+        exact,
+        &sweep,
+    );
+    for pt in &mut out {
+        pt.method = RK4_NATIVE.into();
+    }
+    out.extend(work_precision_fixed(
+        &sys, RK4_FIXED, p.t0, x0, t_end, exact, hs, repeats,
+    ));
+    Ok(out)
+}
+
+/// Time at equal error along each curve (log-log interpolation) and the speed-ups of the
+/// fixed-size fast path.
+fn write_equal_error(out: &mut String, points: &[Point]) -> std::fmt::Result {
+    let curve = |m: &str| -> Vec<(f64, f64)> {
+        points
+            .iter()
+            .filter(|p| p.method == m)
+            .map(|p| (p.error, p.secs))
+            .collect()
+    };
+    let (expr, slices, fixed, dp) = (
+        curve("rk4"),
+        curve(RK4_NATIVE),
+        curve(RK4_FIXED),
+        curve("dopri5"),
+    );
+    writeln!(
+        out,
+        "Time at equal error (µs; ratios are that time ÷ the fast path's, > 1 means the fast path is faster):\n"
+    )?;
+    writeln!(
+        out,
+        "| error | rk4 native [f64; N] | rk4 native (slices) | ÷ | rk4 expression | ÷ | dopri5 expression | ÷ |"
+    )?;
+    writeln!(out, "|---:|---:|---:|---:|---:|---:|---:|---:|")?;
+    for k in [3, 5, 7, 9, 11] {
+        let e = 10f64.powi(-k);
+        let Some(tf) = cost_at_error(&fixed, e) else {
+            continue;
+        };
+        let cell = |c: &[(f64, f64)]| match cost_at_error(c, e) {
+            Some(t) => format!("{:.2} | {:.2}×", t * 1e6, t / tf),
+            None => "– | –".into(),
+        };
+        writeln!(
+            out,
+            "| 1e-{k} | {:.2} | {} | {} | {} |",
+            tf * 1e6,
+            cell(&slices),
+            cell(&expr),
+            cell(&dp)
+        )?;
+    }
+    writeln!(out)
 }
 
 fn write_table(out: &mut String, points: &[Point]) -> std::fmt::Result {

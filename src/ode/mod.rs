@@ -6,8 +6,10 @@
 pub mod dopri5;
 pub mod explicit;
 pub mod expr;
+pub mod fixed;
 pub mod implicit;
 pub mod method;
+pub mod native;
 pub mod problem;
 pub mod solve;
 pub mod stability;
@@ -17,6 +19,7 @@ pub mod system;
 pub mod tableau;
 
 pub use explicit::ExplicitRk;
+pub use fixed::{FixedFn, FixedSolution, FixedSystem, rk4_step, solve_fixed_n, solve_fixed_n_with};
 pub use method::Method;
 pub use solve::{
     Adaptive, Outcome, Scheme, Solution, Stepper, solve_adaptive, solve_fixed, solve_fixed_final,

@@ -225,6 +225,31 @@ impl Scheme<'_> {
     }
 }
 
+/// The number of fixed steps of size h from t0 to t_end (the last one may be shorter), or why
+/// there can be none. Shared with the fixed-size path so both take identical steps.
+pub(crate) fn fixed_step_count(t0: f64, t_end: f64, h: f64) -> Result<usize, String> {
+    if !(h.is_finite() && h > 0.0) {
+        return Err(format!("step size h = {h} must be positive and finite"));
+    }
+    if !(t0.is_finite() && t_end.is_finite() && t_end >= t0) {
+        return Err(format!(
+            "need finite t0 ≤ t_end, got t0 = {t0}, t_end = {t_end}"
+        ));
+    }
+    let ratio = (t_end - t0) / h;
+    if ratio > MAX_FIXED_STEPS {
+        return Err(format!(
+            "{ratio:.3e} steps of h = {h} exceed the limit of {MAX_FIXED_STEPS:e}"
+        ));
+    }
+    // a whole number of steps when (t_end − t0)/h is one up to rounding
+    Ok(if (ratio - ratio.round()).abs() < 1e-9 * ratio.max(1.0) {
+        ratio.round() as usize
+    } else {
+        ratio.ceil() as usize
+    })
+}
+
 #[allow(clippy::too_many_arguments)]
 fn run_fixed<S: System + ?Sized>(
     sys: &S,
@@ -249,38 +274,14 @@ fn run_fixed<S: System + ?Sized>(
             format!("initial state has {n} values, the system {}", sys.dim()),
         );
     }
-    if !(h.is_finite() && h > 0.0) {
-        return fail(
-            sol,
-            t0,
-            format!("step size h = {h} must be positive and finite"),
-        );
-    }
-    if !(t0.is_finite() && t_end.is_finite() && t_end >= t0) {
-        return fail(
-            sol,
-            t0,
-            format!("need finite t0 ≤ t_end, got t0 = {t0}, t_end = {t_end}"),
-        );
-    }
+    let steps = match fixed_step_count(t0, t_end, h) {
+        Ok(steps) => steps,
+        Err(reason) => return fail(sol, t0, reason),
+    };
     if out_of_bounds(x0, bound) {
         sol.outcome = Outcome::Diverged { t: t0 };
         return sol;
     }
-    let ratio = (t_end - t0) / h;
-    if ratio > MAX_FIXED_STEPS {
-        return fail(
-            sol,
-            t0,
-            format!("{ratio:.3e} steps of h = {h} exceed the limit of {MAX_FIXED_STEPS:e}"),
-        );
-    }
-    // a whole number of steps when (t_end − t0)/h is one up to rounding
-    let steps = if (ratio - ratio.round()).abs() < 1e-9 * ratio.max(1.0) {
-        ratio.round() as usize
-    } else {
-        ratio.ceil() as usize
-    };
     let counted = Counted::new(sys);
     let mut stepper = match scheme {
         Scheme::Method(m) if m.needs_second_order_system() => {

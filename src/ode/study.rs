@@ -3,6 +3,7 @@
 
 use std::time::Instant;
 
+use super::fixed::{FixedSystem, solve_fixed_n};
 use super::solve::{Adaptive, Scheme, solve_adaptive, solve_fixed_final};
 use super::{Method, System};
 
@@ -164,6 +165,67 @@ pub fn work_precision<S: System + ?Sized>(
     out
 }
 
+#[allow(clippy::too_many_arguments)]
+/// [`work_precision`] for RK4 on the fixed-size fast path ([`solve_fixed_n`]); the points are
+/// labelled `label`.
+pub fn work_precision_fixed<const N: usize, S: FixedSystem<N>>(
+    sys: &S,
+    label: &str,
+    t0: f64,
+    x0: [f64; N],
+    t_end: f64,
+    exact_end: &[f64],
+    hs: &[f64],
+    repeats: usize,
+) -> Vec<Point> {
+    hs.iter()
+        .map(|&h| {
+            let mut best = f64::INFINITY;
+            let mut sol = None;
+            for _ in 0..repeats.max(1) {
+                let start = Instant::now();
+                let s = solve_fixed_n(sys, t0, std::hint::black_box(x0), h, t_end, f64::INFINITY);
+                best = best.min(start.elapsed().as_secs_f64());
+                sol = Some(s);
+            }
+            let sol = sol.expect("at least one repeat");
+            Point {
+                method: label.to_string(),
+                h_or_tol: h,
+                error: if sol.finished() {
+                    max_error(&sol.x, exact_end)
+                } else {
+                    f64::INFINITY
+                },
+                f_evals: sol.f_evals,
+                secs: best,
+            }
+        })
+        .collect()
+}
+
+/// The cost (e.g. seconds) at a given error along a work-precision curve of (error, cost)
+/// points, interpolated linearly in log-log; None outside the curve's range of errors.
+pub fn cost_at_error(points: &[(f64, f64)], error: f64) -> Option<f64> {
+    let mut pts: Vec<(f64, f64)> = points
+        .iter()
+        .filter(|p| p.0 > 0.0 && p.0.is_finite() && p.1 > 0.0)
+        .map(|p| (p.0.ln(), p.1.ln()))
+        .collect();
+    pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let e = error.ln();
+    pts.windows(2)
+        .find(|w| w[0].0 <= e && e <= w[1].0)
+        .map(|w| {
+            let s = if w[1].0 > w[0].0 {
+                (e - w[0].0) / (w[1].0 - w[0].0)
+            } else {
+                0.0
+            };
+            (w[0].1 + s * (w[1].1 - w[0].1)).exp()
+        })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -175,5 +237,18 @@ mod tests {
             .map(|&h: &f64| (h, 3.0 * h.powi(4)))
             .collect();
         assert!((loglog_slope(&pts) - 4.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn cost_at_error_interpolates_in_log_log() {
+        // cost = err^-1/4 exactly along the curve, unsorted on purpose
+        let pts: Vec<(f64, f64)> = [1e-8, 1e-2, 1e-4]
+            .iter()
+            .map(|&e: &f64| (e, e.powf(-0.25)))
+            .collect();
+        let c = cost_at_error(&pts, 1e-6).unwrap();
+        assert!((c - 1e-6f64.powf(-0.25)).abs() < 1e-9 * c);
+        assert_eq!(cost_at_error(&pts, 1e-9), None);
+        assert_eq!(cost_at_error(&pts, 1.0), None);
     }
 }
