@@ -249,11 +249,212 @@ fn presenter_view_snapshot() {
                 problems: &[],
                 bookmarks: &[(1, "big h (spiral)".to_owned())],
             };
-            presenter_ui(ui, &deck, 0, &mut states, &info);
+            presenter_ui(ui, &deck, 0, &mut states, &info, None);
         });
     harness.run_steps(3);
     harness.snapshot_options(
         "presenter-view",
         &SnapshotOptions::new().threshold(2.0).max_failed_pixels(40),
     );
+}
+
+/// In scene mode the presenter's left side is the scene panel, not the slide and its controls.
+#[test]
+fn presenter_view_in_scene_mode_shows_the_scene_panel() {
+    use egui_kittest::Harness;
+    use egui_kittest::kittest::Queryable as _;
+    let text = deck_text("0.1", "3.0", "");
+    let deck = parse_deck(&text, Path::new("t.ron")).unwrap();
+    let p = Pacing::new(&deck);
+    let mut states = DeckState::default();
+    let mut scene_mode = true;
+    let mut harness = Harness::builder()
+        .with_size([1280.0, 800.0])
+        .build_ui(|ui| {
+            let info = PresenterInfo {
+                pace: p.report(),
+                problems: &[],
+                bookmarks: &[],
+            };
+            let mut panel = |ui: &mut egui::Ui| {
+                ui.label("scene panel: fish count");
+            };
+            let scene: Option<lectern::app::presenter::SceneControls> =
+                scene_mode.then_some(&mut panel);
+            presenter_ui(ui, &deck, 1, &mut states, &info, scene);
+        });
+    harness.run_steps(2);
+    assert!(harness.query_by_label("scene panel: fish count").is_some());
+    assert!(
+        harness.query_by_label_contains("Live controls").is_none(),
+        "scene mode: the slide's controls give way to the scene panel"
+    );
+    drop(harness);
+    // The same view in slide mode shows the slide's controls and no scene panel.
+    scene_mode = false;
+    let mut harness = Harness::builder()
+        .with_size([1280.0, 800.0])
+        .build_ui(|ui| {
+            let info = PresenterInfo {
+                pace: p.report(),
+                problems: &[],
+                bookmarks: &[],
+            };
+            let mut panel = |ui: &mut egui::Ui| {
+                ui.label("scene panel: fish count");
+            };
+            let scene: Option<lectern::app::presenter::SceneControls> =
+                scene_mode.then_some(&mut panel);
+            presenter_ui(ui, &deck, 1, &mut states, &info, scene);
+        });
+    harness.run_steps(2);
+    assert!(harness.query_by_label("scene panel: fish count").is_none());
+    assert!(harness.query_by_label_contains("Live controls").is_some());
+}
+
+fn app_harness(path: &Path) -> egui_kittest::Harness<'static, lectern::app::LecternApp> {
+    let app = lectern::app::LecternApp::new(DeckSession::open(path).unwrap());
+    egui_kittest::Harness::builder()
+        .with_size([960.0, 540.0])
+        .wgpu()
+        .build_ui_state(
+            |ui, app: &mut lectern::app::LecternApp| app.frame_ui(ui),
+            app,
+        )
+}
+
+/// Sets the spiral slide's `h` in the running app, as a drag of its slider would.
+fn tweak_h(h: &mut egui_kittest::Harness<'static, lectern::app::LecternApp>, value: f64) {
+    let slide = h.state().session().deck().slides[1].clone();
+    let state = h.state_mut().slide_state(1).unwrap();
+    state.ensure_widgets(&slide);
+    assert!(state.set_param(&[0], H, ParamSnapshot::F64(value)));
+}
+
+/// `Ctrl+S` pressed in the app: the deck file gets the tweaked value and nothing else changes;
+/// the live tweaks are also saved for `export --with-tweaks`.
+#[test]
+fn ctrl_s_in_the_app_writes_back_the_tweak() {
+    use lectern::app::tweak_file::{TweakEntry, TweakFile};
+    let (dir, path, _) = session(&deck_text("0.1", "3.0", ""));
+    let mut h = app_harness(&path);
+    h.run_steps(2);
+    h.key_press(egui::Key::ArrowRight);
+    h.run_steps(2);
+    assert_eq!(h.state().nav().index(), 1);
+    tweak_h(&mut h, 0.5);
+    h.run_steps(1);
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::S);
+    h.run_steps(2);
+    let written = std::fs::read_to_string(&path).unwrap();
+    assert_eq!(
+        written,
+        deck_text("0.5", "3.0", ""),
+        "only the bytes of h change"
+    );
+    let tweaks = TweakFile::load(&dir.path().join("talk.tweaks.ron")).unwrap();
+    assert_eq!(
+        tweaks.slides.get("spiral"),
+        Some(&vec![TweakEntry {
+            widget: 0,
+            param: H.to_owned(),
+            value: ParamSnapshot::F64(0.5)
+        }])
+    );
+    // Without a tweak, Ctrl+S leaves the file alone.
+    let mut h2 = app_harness(&path);
+    h2.run_steps(2);
+    h2.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::S);
+    h2.run_steps(2);
+    assert_eq!(std::fs::read_to_string(&path).unwrap(), written);
+}
+
+fn mean_abs_diff(a: &image::RgbaImage, b: &image::RgbaImage) -> f64 {
+    assert_eq!(a.dimensions(), b.dimensions());
+    let sum: u64 = a
+        .as_raw()
+        .iter()
+        .zip(b.as_raw())
+        .map(|(x, y)| u64::from(x.abs_diff(*y)))
+        .sum();
+    sum as f64 / a.as_raw().len() as f64
+}
+
+/// `E` pressed in the app exports the slide as shown (tweak included) and the tweak state;
+/// `lectern export --with-tweaks` then renders the same image, and without the tweaks a
+/// different one.
+#[test]
+fn e_in_the_app_and_export_with_tweaks_show_what_was_presented() {
+    let (dir, path, _) = session(&deck_text("0.1", "3.0", ""));
+    let mut h = app_harness(&path);
+    h.run_steps(2);
+    h.key_press(egui::Key::ArrowRight);
+    h.run_steps(2);
+    tweak_h(&mut h, 0.8);
+    h.run_steps(1);
+    h.key_press(egui::Key::E);
+    h.run_steps(2);
+    let live_file = dir.path().join("spiral-live.png");
+    let live = image::open(&live_file)
+        .unwrap_or_else(|e| panic!("{}: {e}", live_file.display()))
+        .to_rgba8();
+    let tweaks = dir.path().join("talk.tweaks.ron");
+    assert!(tweaks.exists(), "E also saves the live tweaks");
+
+    let export = |out: &str, with: Option<&Path>| {
+        let mut cmd = std::process::Command::new(env!("CARGO_BIN_EXE_lectern"));
+        cmd.arg("export")
+            .arg(&path)
+            .arg("--out")
+            .arg(dir.path().join(out));
+        if let Some(file) = with {
+            cmd.arg("--with-tweaks").arg(file);
+        }
+        let o = cmd.output().unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        image::open(dir.path().join(out).join("slide-02.png"))
+            .unwrap()
+            .to_rgba8()
+    };
+    let tweaked = export("tweaked", Some(&tweaks));
+    let plain = export("plain", None);
+    let same = mean_abs_diff(&tweaked, &live);
+    let other = mean_abs_diff(&plain, &live);
+    eprintln!("mean |diff| per channel: with tweaks {same:.4}, without {other:.4}");
+    assert!(
+        same < 0.05,
+        "export --with-tweaks differs from the live render by {same}"
+    );
+    assert!(
+        other > 0.5,
+        "the tweak must change the image (diff {other})"
+    );
+}
+
+#[test]
+fn a_broken_tweaks_file_names_its_line_and_stale_entries_are_reported() {
+    use lectern::app::tweak_file::TweakFile;
+    let dir = tempfile::tempdir().unwrap();
+    let bad = dir.path().join("bad.tweaks.ron");
+    std::fs::write(
+        &bad,
+        "(\n  slides: {\n    \"spiral\": [(widget: 0, param: \"h\", value: F64(0.5)\n",
+    )
+    .unwrap();
+    let err = TweakFile::load(&bad).unwrap_err().to_string();
+    assert!(err.contains("bad.tweaks.ron:"), "{err}");
+
+    let good = dir.path().join("good.tweaks.ron");
+    std::fs::write(
+        &good,
+        "(slides: {\"spiral\": [(widget: 0, param: \"h\", value: F64(0.5)), (widget: 3, param: \"h\", value: F64(0.5))], \"gone\": []})",
+    )
+    .unwrap();
+    let tweaks = TweakFile::load(&good).unwrap();
+    let deck = parse_deck(&deck_text("0.1", "3.0", ""), Path::new("t.ron")).unwrap();
+    assert_eq!(tweaks.unknown_slides(&deck), vec!["gone".to_owned()]);
+    let mut state = SlideState::default();
+    let problems = tweaks.apply(&deck, 1, &mut state);
+    assert_eq!(problems.len(), 1, "{problems:?}");
+    assert_eq!(state.param(&[0], H), Some(ParamSnapshot::F64(0.5)));
 }

@@ -211,7 +211,7 @@ fn block_ui(
                     .layout(egui::Layout::top_down(Align::Min)),
             );
             child.set_clip_rect(rect.intersect(ui.clip_rect()));
-            state.widget(path, spec).ui(&mut child);
+            state.widget(path, spec, bctx.base_dir).ui(&mut child);
         }
         Block::Columns(cols) => {
             let n = cols.len().max(1) as f32;

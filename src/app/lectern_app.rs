@@ -9,8 +9,10 @@ use super::offscreen::OffscreenRenderer;
 use super::overlays;
 use super::pacing::Pacing;
 use super::presenter::{PresenterInfo, presenter_ui};
+use super::screens::{MonitorRect, ScreenPlan};
 use super::slide_view::{DeckState, SlideState, black_ui, slide_ui};
 use super::theme::Palette;
+use super::tweak_file::{TweakFile, tweak_file_path};
 use super::tweaks::{Bookmarks, apply_declared, write_back};
 use crate::deck::{DeckSession, Nav};
 use crate::reload::Reloaded;
@@ -58,6 +60,11 @@ pub struct LecternApp {
     /// Rehearsal: actual times per slide are written to this file on every slide change.
     pub rehearsal_file: Option<PathBuf>,
     offscreen: Option<OffscreenRenderer>,
+    /// The monitors seen at start and where the windows go (see [`super::screens`]).
+    screens: Vec<MonitorRect>,
+    screen_plan: ScreenPlan,
+    /// The audience window was sent to its monitor.
+    placed: bool,
 }
 
 impl LecternApp {
@@ -80,6 +87,9 @@ impl LecternApp {
             presenter_window: false,
             rehearsal_file: None,
             offscreen: None,
+            screens: Vec::new(),
+            screen_plan: ScreenPlan::Single,
+            placed: false,
         }
     }
 
@@ -92,6 +102,43 @@ impl LecternApp {
         {
             tracing::warn!("hot reload is off: {e}");
         }
+    }
+
+    /// The monitors found at start and the plan made from them: with a presenter window,
+    /// the audience window (this one) goes full-screen on its monitor on the first frame.
+    pub fn set_screens(&mut self, monitors: Vec<MonitorRect>, plan: ScreenPlan) {
+        self.presenter_window = plan.has_presenter_window();
+        self.screens = monitors;
+        self.screen_plan = plan;
+        self.placed = false;
+    }
+
+    pub fn screen_plan(&self) -> &ScreenPlan {
+        &self.screen_plan
+    }
+
+    /// First frame: move the audience window onto its monitor, size it to it (a bare X server
+    /// without a window manager ignores the full-screen hint) and make it full-screen there.
+    fn place_audience(&mut self, ctx: &egui::Context) {
+        if self.placed {
+            return;
+        }
+        self.placed = true;
+        let ScreenPlan::Dual {
+            audience: Some(i), ..
+        } = self.screen_plan
+        else {
+            return;
+        };
+        let Some(m) = self.screens.get(i) else {
+            return;
+        };
+        let [x, y] = m.pos_points();
+        let [w, h] = m.size_points();
+        let root = egui::ViewportId::ROOT;
+        ctx.send_viewport_cmd_to(root, egui::ViewportCommand::OuterPosition(egui::pos2(x, y)));
+        ctx.send_viewport_cmd_to(root, egui::ViewportCommand::InnerSize(egui::vec2(w, h)));
+        ctx.send_viewport_cmd_to(root, egui::ViewportCommand::SetMonitor(i));
     }
 
     pub fn session(&self) -> &DeckSession {
@@ -130,6 +177,7 @@ impl LecternApp {
         let ctx = ui.ctx().clone();
         self.handle_keys(&ctx);
         self.track_pace(&ctx);
+        self.place_audience(&ctx);
         if self.presenter_window {
             self.show_presenter_window(&ctx);
         }
@@ -268,14 +316,37 @@ impl LecternApp {
             problems: &problems,
             bookmarks: &marks,
         };
-        presenter_ui(ui, deck, index, &mut self.states, &info);
+        // In scene mode the scene's panel replaces the slide and its controls.
+        let mut scene_panel = |ui: &mut egui::Ui| match &mut self.scene {
+            Some(Ok(view)) => view.controls_ui(ui),
+            Some(Err(e)) => {
+                ui.label(format!("The scene could not start: {e}"));
+            }
+            None => {
+                ui.label("The scene is starting…");
+            }
+        };
+        let scene: Option<super::presenter::SceneControls> =
+            (self.mode == Mode::Scene).then_some(&mut scene_panel);
+        presenter_ui(ui, deck, index, &mut self.states, &info, scene);
     }
 
     fn show_presenter_window(&mut self, ctx: &egui::Context) {
         let id = egui::ViewportId::from_hash_of("lectern-presenter");
-        let builder = egui::ViewportBuilder::default()
+        let mut builder = egui::ViewportBuilder::default()
             .with_title("lectern — presenter")
             .with_inner_size([1280.0, 800.0]);
+        // On its own monitor (the laptop's), the presenter window fills it.
+        if let ScreenPlan::Dual {
+            presenter: Some(i), ..
+        } = self.screen_plan
+            && let Some(m) = self.screens.get(i)
+        {
+            builder = builder
+                .with_position(m.pos_points())
+                .with_inner_size(m.size_points())
+                .with_maximized(true);
+        }
         ctx.show_viewport_immediate(id, builder, |ui, _class| {
             let ctx = ui.ctx().clone();
             if ctx.input(|i| i.viewport().close_requested()) {
@@ -287,8 +358,22 @@ impl LecternApp {
         });
     }
 
-    /// `E`: the current slide, exactly as shown (live tweaks included), to a PNG beside the deck.
+    /// Writes the live tweaks of every slide to `DECK.tweaks.ron` beside the deck (for
+    /// `lectern export --with-tweaks`); returns the file, or why it could not be written.
+    pub fn save_tweak_file(&mut self) -> Result<PathBuf, String> {
+        let file = tweak_file_path(self.session.path());
+        let tweaks = TweakFile::from_states(self.session.deck(), &mut self.states);
+        crate::deck::write_back::write_atomic(&file, &tweaks.to_ron())
+            .map_err(|e| format!("cannot write {}: {e}", file.display()))?;
+        Ok(file)
+    }
+
+    /// `E`: the current slide, exactly as shown (live tweaks included), to a PNG beside the
+    /// deck, and the live tweaks of all slides to `DECK.tweaks.ron`.
     fn export_current(&mut self, ctx: &egui::Context) {
+        if let Err(e) = self.save_tweak_file() {
+            tracing::warn!("{e}");
+        }
         let index = self.session.nav().index();
         let folder = self.session.folder();
         if self.offscreen.is_none() {
@@ -444,6 +529,10 @@ impl LecternApp {
             }
             ExportSlide => self.export_current(ctx),
             WriteBack => {
+                // The tweaks file first: once written back they are no longer tweaks.
+                if let Err(e) = self.save_tweak_file() {
+                    tracing::warn!("{e}");
+                }
                 let deck = self.session.deck();
                 let slide = &deck.slides[self.session.nav().index()];
                 let path = self.session.path().to_path_buf();

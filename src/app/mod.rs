@@ -9,8 +9,10 @@ pub mod offscreen;
 pub mod overlays;
 pub mod pacing;
 pub mod presenter;
+pub mod screens;
 pub mod slide_view;
 pub mod theme;
+pub mod tweak_file;
 pub mod tweaks;
 
 pub use lectern_app::{LecternApp, Mode, Overlay};

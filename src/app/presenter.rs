@@ -17,12 +17,16 @@ pub struct PresenterInfo<'a> {
     pub bookmarks: &'a [(u8, String)],
 }
 
+/// In scene mode: the scene's control panel, which takes the place of the current slide.
+pub type SceneControls<'a> = &'a mut dyn FnMut(&mut egui::Ui);
+
 pub fn presenter_ui(
     ui: &mut egui::Ui,
     deck: &Deck,
     index: usize,
     states: &mut DeckState,
     info: &PresenterInfo,
+    scene: Option<SceneControls>,
 ) {
     theme::install_fonts(ui.ctx());
     let palette = Palette::of(Theme::Dark);
@@ -44,40 +48,67 @@ pub fn presenter_ui(
     let now_h = (left.width() / ratio).min(left.height() * 0.68);
     let now_rect =
         Rect::from_min_size(left.min + vec2(0.0, text * 1.5), vec2(now_h * ratio, now_h));
-    heading(
-        ui,
-        left.min,
-        &format!("Now: {} / {}", index + 1, deck.slides.len()),
-        text,
-        &palette,
-    );
-    if let Some(slide) = deck.slides.get(index) {
-        let mut child = ui.new_child(UiBuilder::new().id_salt("presenter-now").max_rect(now_rect));
-        slide_ui_with(
-            &mut child,
-            deck,
-            index,
-            states.slide(slide),
-            SlideOptions::default(),
+    if let Some(scene_controls) = scene {
+        // The audience sees the water scene: its panel fills the left side.
+        heading(
+            ui,
+            left.min,
+            &format!(
+                "Now: water scene (Tab returns to slide {} / {})",
+                index + 1,
+                deck.slides.len()
+            ),
+            text,
+            &palette,
         );
-        let controls = Rect::from_min_max(egui::pos2(left.min.x, now_rect.max.y + pad), left.max);
+        let controls = Rect::from_min_max(left.min + vec2(0.0, text * 1.8), left.max);
         let mut child = ui.new_child(
             UiBuilder::new()
-                .id_salt("presenter-controls")
+                .id_salt("presenter-scene-controls")
                 .max_rect(controls),
         );
         child.style_mut().visuals = egui::Visuals::dark();
         child.style_mut().override_font_id = Some(egui::FontId::proportional(text * 0.8));
-        egui::ScrollArea::vertical().show(&mut child, |ui| {
-            ui.label(
-                RichText::new("Live controls (R resets, Ctrl+S writes back)").color(palette.dim),
+        egui::ScrollArea::vertical().show(&mut child, |ui| scene_controls(ui));
+    } else {
+        heading(
+            ui,
+            left.min,
+            &format!("Now: {} / {}", index + 1, deck.slides.len()),
+            text,
+            &palette,
+        );
+        if let Some(slide) = deck.slides.get(index) {
+            let mut child =
+                ui.new_child(UiBuilder::new().id_salt("presenter-now").max_rect(now_rect));
+            slide_ui_with(
+                &mut child,
+                deck,
+                index,
+                states.slide(slide),
+                SlideOptions::default(),
             );
-            let state = states.slide(slide);
-            if state.widget_count() == 0 {
-                ui.label(RichText::new("no live widgets on this slide").color(palette.dim));
-            }
-            state.controls_ui(ui);
-        });
+            let controls =
+                Rect::from_min_max(egui::pos2(left.min.x, now_rect.max.y + pad), left.max);
+            let mut child = ui.new_child(
+                UiBuilder::new()
+                    .id_salt("presenter-controls")
+                    .max_rect(controls),
+            );
+            child.style_mut().visuals = egui::Visuals::dark();
+            child.style_mut().override_font_id = Some(egui::FontId::proportional(text * 0.8));
+            egui::ScrollArea::vertical().show(&mut child, |ui| {
+                ui.label(
+                    RichText::new("Live controls (R resets, Ctrl+S writes back)")
+                        .color(palette.dim),
+                );
+                let state = states.slide(slide);
+                if state.widget_count() == 0 {
+                    ui.label(RichText::new("no live widgets on this slide").color(palette.dim));
+                }
+                state.controls_ui(ui);
+            });
+        }
     }
 
     // Right: next slide, timer, notes, problems.

@@ -19,6 +19,9 @@ pub struct SlideState {
     /// Problems found while drawing (a formula that does not typeset), from the last frame:
     /// for the presenter's screen, never the audience's.
     problems: Vec<String>,
+    /// The deck's folder, remembered from the last draw: widgets made before the slide is
+    /// drawn (bookmarks, restores) resolve their files (e.g. tableaux) against it too.
+    base_dir: Option<std::path::PathBuf>,
 }
 
 pub(crate) struct WidgetSlot {
@@ -29,13 +32,18 @@ pub(crate) struct WidgetSlot {
 impl SlideState {
     /// The widget at block path `path` (indices into the body, then into columns), made from
     /// `spec` if it is new or its spec in the file changed.
-    pub(crate) fn widget(&mut self, path: &[usize], spec: &WidgetSpec) -> &mut dyn SlideWidget {
+    pub(crate) fn widget(
+        &mut self,
+        path: &[usize],
+        spec: &WidgetSpec,
+        base_dir: Option<&std::path::Path>,
+    ) -> &mut dyn SlideWidget {
         let slot = self
             .widgets
             .entry(path.to_vec())
             .and_modify(|slot| {
                 if slot.spec != *spec {
-                    let mut widget = spec.instantiate();
+                    let mut widget = spec.instantiate_in(base_dir);
                     carry_tweaks(&slot.spec, slot.widget.as_mut(), widget.as_mut());
                     *slot = WidgetSlot {
                         spec: spec.clone(),
@@ -45,7 +53,7 @@ impl SlideState {
             })
             .or_insert_with(|| WidgetSlot {
                 spec: spec.clone(),
-                widget: spec.instantiate(),
+                widget: spec.instantiate_in(base_dir),
             });
         slot.widget.as_mut()
     }
@@ -61,6 +69,11 @@ impl SlideState {
         &self.problems
     }
 
+    /// Where the deck's files are (for widgets made before the slide is first drawn).
+    pub fn set_base_dir(&mut self, dir: Option<&std::path::Path>) {
+        self.base_dir = dir.map(std::path::Path::to_path_buf);
+    }
+
     /// Makes every widget of `slide` (so tweaks can be set before it is first drawn).
     pub fn ensure_widgets(&mut self, slide: &Slide) {
         fn walk(state: &mut SlideState, blocks: &[Block], path: &mut Vec<usize>) {
@@ -68,7 +81,8 @@ impl SlideState {
                 path.push(i);
                 match b {
                     Block::Widget(spec) => {
-                        state.widget(path, spec);
+                        let dir = state.base_dir.clone();
+                        state.widget(path, spec, dir.as_deref());
                     }
                     Block::Columns(cols) => {
                         for (c, col) in cols.iter().enumerate() {
@@ -206,6 +220,11 @@ impl DeckState {
         self.slides.entry(slide.key().to_owned()).or_default()
     }
 
+    /// The state of `slide` if it was ever drawn or tweaked.
+    pub fn existing(&mut self, slide: &Slide) -> Option<&mut SlideState> {
+        self.slides.get_mut(slide.key())
+    }
+
     /// After a reload: forget the states of slides that no longer exist. Widgets whose spec
     /// changed are recreated lazily by [`SlideState::widget`].
     pub fn retain_deck(&mut self, deck: &Deck) {
@@ -306,6 +325,7 @@ pub fn slide_ui_with(
     content.set_style(blocks::widget_style(ui.style(), &look, deck.theme));
     content.set_clip_rect(canvas.intersect(ui.clip_rect()));
     state.problems.clear();
+    state.base_dir.clone_from(&deck.base_dir);
     let bctx = BlockCtx {
         look,
         slide_key: slide.key(),

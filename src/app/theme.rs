@@ -179,6 +179,9 @@ pub fn install_fonts(ctx: &egui::Context) {
     add("LibertinusSerif-Italic", all[2], SERIF_ITALIC);
     add("LibertinusSerif-Semibold", all[4], SERIF_BOLD);
     add("DejaVuSansMono", all[16], MONO);
+    // Last resort in every family: the maths fonts' full coverage (superscript minus, arrows,
+    // box drawing), so no label anywhere falls through to a missing glyph.
+    crate::math::add_fallback_fonts(&mut defs);
     ctx.set_fonts(defs);
 }
 

@@ -1,11 +1,17 @@
 //! `lectern present`: present a deck in a window.
 
 use std::path::PathBuf;
+use std::sync::{Arc, Mutex};
 
 use anyhow::Context as _;
 
 use crate::app::LecternApp;
+use crate::app::screens::{MonitorRect, ScreenChoice, ScreenPlan, plan_screens};
 use crate::deck::DeckSession;
+use winit::application::ApplicationHandler;
+use winit::event::{DeviceEvent, DeviceId, StartCause, WindowEvent};
+use winit::event_loop::ActiveEventLoop;
+use winit::window::WindowId;
 
 /// Present a deck in a window (the default command).
 #[derive(Debug, Default, clap::Args)]
@@ -18,10 +24,14 @@ pub struct Args {
     /// Start fullscreen.
     #[arg(long)]
     pub fullscreen: bool,
-    /// Open a second window with the presenter view (notes, timer, next slide, controls) for
-    /// the lecturer's screen; the main window shows only the slides. One screen: press P.
-    #[arg(long)]
+    /// Open the presenter window (notes, timer, next slide, controls) even on one monitor.
+    /// With a second monitor this is automatic: the slides go full-screen on it and the
+    /// presenter window stays on the primary (laptop) screen.
+    #[arg(long, conflicts_with = "single_screen")]
     pub presenter: bool,
+    /// One window only, whatever monitors are connected (P toggles the presenter overlay).
+    #[arg(long)]
+    pub single_screen: bool,
     /// Rehearsal: record the actual time per slide in DECK.timings.ron beside the deck.
     #[arg(long)]
     pub rehearse: bool,
@@ -48,7 +58,13 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     let title = format!("lectern — {}", session.deck().title);
     let rehearsal = args.rehearse.then(|| path.with_extension("timings.ron"));
-    let presenter = args.presenter;
+    let choice = if args.single_screen {
+        ScreenChoice::Single
+    } else if args.presenter {
+        ScreenChoice::Presenter
+    } else {
+        ScreenChoice::Auto
+    };
     let viewport = egui::ViewportBuilder::default()
         .with_title(&title)
         .with_app_id("lectern")
@@ -60,21 +76,135 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         renderer: eframe::Renderer::Wgpu,
         ..Default::default()
     };
-    eframe::run_native(
+    let open_error = "cannot open the window (no display? set DISPLAY or WAYLAND_DISPLAY, \
+         or use `lectern export` headless)";
+    // Our own event loop, so the monitors can be read (winit lists them only on a running
+    // loop) before eframe creates the app.
+    let event_loop = winit::event_loop::EventLoop::<eframe::UserEvent>::with_user_event()
+        .build()
+        .context(open_error)?;
+    let monitors: Arc<Mutex<Vec<MonitorRect>>> = Arc::default();
+    let seen = monitors.clone();
+    let app = eframe::create_native(
         &title,
         options,
         Box::new(move |cc| {
+            let monitors = seen.lock().map(|m| m.clone()).unwrap_or_default();
+            let plan = plan_screens(&monitors, choice);
+            eprintln!("lectern: {}", describe(&monitors, &plan));
             let mut app = LecternApp::new(session);
             app.render_state = cc.wgpu_render_state.clone();
             app.watch(&cc.egui_ctx);
-            app.presenter_window = presenter;
+            app.set_screens(monitors, plan);
             app.rehearsal_file = rehearsal;
             Ok(Box::new(app))
         }),
-    )
-    .map_err(|e| anyhow::anyhow!("{e}"))
-    .context(
-        "cannot open the window (no display? set DISPLAY or WAYLAND_DISPLAY, \
-         or use `lectern export` headless)",
-    )
+        &event_loop,
+    );
+    let mut probe = MonitorProbe {
+        inner: app,
+        monitors,
+        probed: false,
+    };
+    event_loop.run_app(&mut probe).context(open_error)
+}
+
+/// One line for the terminal: what monitors were seen and where the windows go.
+fn describe(monitors: &[MonitorRect], plan: &ScreenPlan) -> String {
+    let list: Vec<String> = monitors
+        .iter()
+        .map(|m| {
+            format!(
+                "{} {}x{}+{}+{}{}",
+                m.name,
+                m.size_px[0],
+                m.size_px[1],
+                m.pos_px[0],
+                m.pos_px[1],
+                if m.primary { " (primary)" } else { "" }
+            )
+        })
+        .collect();
+    let name = |i: Option<usize>| {
+        i.and_then(|i| monitors.get(i))
+            .map_or("where the system puts it".to_owned(), |m| m.name.clone())
+    };
+    let plan = match plan {
+        ScreenPlan::Single => "one window (P: presenter overlay)".to_owned(),
+        ScreenPlan::Dual {
+            audience,
+            presenter,
+        } => format!(
+            "audience window on {}, presenter window on {}",
+            name(*audience),
+            name(*presenter)
+        ),
+    };
+    format!("monitors: [{}]; {plan}", list.join(", "))
+}
+
+/// Forwards everything to eframe; on the first `resumed` it first records the monitors.
+struct MonitorProbe<'a> {
+    inner: eframe::EframeWinitApplication<'a>,
+    monitors: Arc<Mutex<Vec<MonitorRect>>>,
+    probed: bool,
+}
+
+impl ApplicationHandler<eframe::UserEvent> for MonitorProbe<'_> {
+    fn resumed(&mut self, event_loop: &ActiveEventLoop) {
+        if !self.probed {
+            self.probed = true;
+            let primary = event_loop.primary_monitor();
+            let list: Vec<MonitorRect> = event_loop
+                .available_monitors()
+                .map(|m| {
+                    let pos = m.position();
+                    let size = m.size();
+                    MonitorRect {
+                        pos_px: [pos.x, pos.y],
+                        size_px: [size.width, size.height],
+                        scale: m.scale_factor(),
+                        primary: primary.as_ref() == Some(&m),
+                        name: m.name().unwrap_or_else(|| "monitor".to_owned()),
+                    }
+                })
+                .collect();
+            if let Ok(mut m) = self.monitors.lock() {
+                *m = list;
+            }
+        }
+        self.inner.resumed(event_loop);
+    }
+
+    fn window_event(&mut self, el: &ActiveEventLoop, id: WindowId, event: WindowEvent) {
+        self.inner.window_event(el, id, event);
+    }
+
+    fn new_events(&mut self, el: &ActiveEventLoop, cause: StartCause) {
+        self.inner.new_events(el, cause);
+    }
+
+    fn user_event(&mut self, el: &ActiveEventLoop, event: eframe::UserEvent) {
+        self.inner.user_event(el, event);
+    }
+
+    fn device_event(&mut self, el: &ActiveEventLoop, id: DeviceId, event: DeviceEvent) {
+        self.inner.device_event(el, id, event);
+    }
+
+    fn about_to_wait(&mut self, el: &ActiveEventLoop) {
+        self.inner.about_to_wait(el);
+    }
+
+    fn suspended(&mut self, el: &ActiveEventLoop) {
+        self.inner.suspended(el);
+    }
+
+    fn exiting(&mut self, el: &ActiveEventLoop) {
+        self.inner.exiting(el);
+    }
+
+    fn memory_warning(&mut self, el: &ActiveEventLoop) {
+        self.inner.memory_warning(el);
+    }
 }

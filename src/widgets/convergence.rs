@@ -5,10 +5,11 @@
 use egui_plot::{Line, Plot, PlotPoint, Points, Text};
 use serde::{Deserialize, Serialize};
 
-use super::methods::{MethodId, fixed_path, steps_for};
+use super::methods::{MethodId, steps_for};
 use super::problems::Field1;
 use super::style::{self, fmt_num};
 use super::{Param, SlideWidget};
+use crate::ode::study;
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -53,49 +54,66 @@ fn default_methods() -> Vec<MethodId> {
 /// Below this, errors are round-off, not truncation: left out of the fit.
 const ERR_FLOOR: f64 = 1e-13;
 
-/// (h, error) points of one method.
-pub fn errors(spec: &ConvergenceSpec, m: MethodId) -> Vec<(f64, f64)> {
+/// The step of halving `k`, rounded so a whole number of steps lands on t_end.
+fn level_h(spec: &ConvergenceSpec, k: usize) -> f64 {
+    let h = spec.h_max / 2f64.powi(k as i32);
+    spec.t_end / steps_for(0.0, spec.t_end, h, 1 << 20) as f64
+}
+
+/// Steps one method takes at halving `k` (the work the per-frame budget counts).
+fn level_steps(spec: &ConvergenceSpec, k: usize) -> usize {
+    (spec.t_end / level_h(spec, k)).round() as usize
+}
+
+/// (h, error) points of one method at halvings `ks`, by `ode::study::convergence`; diverged
+/// runs (infinite error) are left out.
+pub fn errors_at(
+    spec: &ConvergenceSpec,
+    m: MethodId,
+    ks: std::ops::Range<usize>,
+) -> Vec<(f64, f64)> {
+    let (Some(scheme), Some(truth)) = (m.scheme(), spec.field.exact(0.0, spec.x0, spec.t_end))
+    else {
+        return Vec::new();
+    };
+    let hs: Vec<f64> = ks.map(|k| level_h(spec, k)).collect();
     let sys = spec.field.system();
-    let exact = spec.field.exact(0.0, spec.x0, spec.t_end);
-    (0..spec.levels.clamp(2, 12))
-        .filter_map(|k| {
-            let h = spec.h_max / 2f64.powi(k as i32);
-            let n = steps_for(0.0, spec.t_end, h, 1 << 20);
-            let h = spec.t_end / n as f64; // land exactly on t_end
-            let p = fixed_path(&sys, m.tableau()?, 0.0, &[spec.x0], h, n, 1e12);
-            let truth = exact?;
-            (p.diverged_at.is_none()).then(|| (h, (p.last()[0] - truth).abs()))
-        })
+    study::convergence(&sys, scheme, 0.0, &[spec.x0], spec.t_end, &[truth], &hs)
+        .points
+        .into_iter()
+        .filter(|p| p.1.is_finite())
         .collect()
 }
 
-/// Least-squares slope of log10(err) against log10(h), over points above the round-off floor.
-pub fn fitted_slope(pts: &[(f64, f64)]) -> Option<f64> {
-    let v: Vec<(f64, f64)> = pts
-        .iter()
-        .filter(|p| p.1 > ERR_FLOOR)
-        .map(|p| (p.0.log10(), p.1.log10()))
-        .collect();
-    if v.len() < 2 {
-        return None;
-    }
-    let n = v.len() as f64;
-    let (mx, my) = (
-        v.iter().map(|p| p.0).sum::<f64>() / n,
-        v.iter().map(|p| p.1).sum::<f64>() / n,
-    );
-    let sxy: f64 = v.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
-    let sxx: f64 = v.iter().map(|p| (p.0 - mx).powi(2)).sum();
-    (sxx > 0.0).then(|| sxy / sxx)
+/// (h, error) points of one method at every halving.
+pub fn errors(spec: &ConvergenceSpec, m: MethodId) -> Vec<(f64, f64)> {
+    errors_at(spec, m, 0..levels(spec))
 }
+
+fn levels(spec: &ConvergenceSpec) -> usize {
+    spec.levels.clamp(2, 12)
+}
+
+/// Least-squares slope of log(err) against log(h) (`ode::study::loglog_slope`), over points
+/// above the round-off floor.
+pub fn fitted_slope(pts: &[(f64, f64)]) -> Option<f64> {
+    let v: Vec<(f64, f64)> = pts.iter().copied().filter(|p| p.1 > ERR_FLOOR).collect();
+    let slope = study::loglog_slope(&v);
+    slope.is_finite().then_some(slope)
+}
+
+/// Steps (summed over methods) computed per frame at most: 12 halvings of RK4 and friends
+/// are ~10⁵ steps, spread over a few frames instead of stalling one. Whole levels are
+/// computed, at least one per frame, so the result does not depend on timing.
+const STEPS_PER_FRAME: usize = 40_000;
+
+type Rows = Vec<(MethodId, Vec<(f64, f64)>, Option<f64>)>;
 
 pub struct Convergence {
     pub spec: ConvergenceSpec,
     initial: ConvergenceSpec,
-    cache: Option<(
-        ConvergenceSpec,
-        Vec<(MethodId, Vec<(f64, f64)>, Option<f64>)>,
-    )>,
+    /// Results for a spec, complete up to `done` halvings.
+    cache: Option<(ConvergenceSpec, Rows, usize)>,
 }
 
 impl Convergence {
@@ -107,19 +125,56 @@ impl Convergence {
         }
     }
 
-    pub fn compute(&self) -> Vec<(MethodId, Vec<(f64, f64)>, Option<f64>)> {
+    /// Every halving at once (for tests and exports).
+    pub fn compute(&self) -> Rows {
+        let mut rows = self.rows_empty();
+        self.extend(&mut rows, 0..levels(&self.spec));
+        rows
+    }
+
+    fn rows_empty(&self) -> Rows {
+        self.methods()
+            .into_iter()
+            .map(|m| (m, Vec::new(), None))
+            .collect()
+    }
+
+    fn extend(&self, rows: &mut Rows, ks: std::ops::Range<usize>) {
+        for (m, pts, slope) in rows.iter_mut() {
+            pts.extend(errors_at(&self.spec, *m, ks.clone()));
+            *slope = fitted_slope(pts);
+        }
+    }
+
+    /// Advances the cached study by one frame's budget; true when it is complete.
+    fn advance(&mut self) -> bool {
+        let stale = !self.cache.as_ref().is_some_and(|(s, ..)| *s == self.spec);
+        if stale {
+            self.cache = Some((self.spec.clone(), self.rows_empty(), 0));
+        }
+        let total = levels(&self.spec);
+        let per_level = |k| level_steps(&self.spec, k) * self.methods().len();
+        let (_, _, done) = self.cache.as_ref().expect("set above");
+        let mut end = *done;
+        let mut budget = 0;
+        while end < total && (end == *done || budget + per_level(end) <= STEPS_PER_FRAME) {
+            budget += per_level(end);
+            end += 1;
+        }
+        let start = *done;
+        let (_, mut rows, _) = self.cache.take().expect("set above");
+        self.extend(&mut rows, start..end);
+        self.cache = Some((self.spec.clone(), rows, end));
+        end == total
+    }
+
+    fn methods(&self) -> Vec<MethodId> {
         let mut ms = self.spec.methods.clone();
         if self.spec.typo && !ms.contains(&MethodId::Rk4Typo) {
             ms.push(MethodId::Rk4Typo);
         }
-        ms.into_iter()
-            .filter(|m| *m != MethodId::Exact)
-            .map(|m| {
-                let e = errors(&self.spec, m);
-                let s = fitted_slope(&e);
-                (m, e, s)
-            })
-            .collect()
+        ms.retain(|m| *m != MethodId::Exact);
+        ms
     }
 }
 
@@ -170,10 +225,12 @@ impl SlideWidget for Convergence {
                     .strong(),
             );
         });
-        if !self.cache.as_ref().is_some_and(|(s, _)| *s == self.spec) {
-            self.cache = Some((self.spec.clone(), self.compute()));
+        if !self.advance() {
+            ui.ctx().request_repaint();
         }
-        let Some((_, data)) = &self.cache else { return };
+        let Some((_, data, _)) = &self.cache else {
+            return;
+        };
         ui.horizontal(|ui| {
             ui.label(format!(
                 "{}, error at t = {}:  slope =",

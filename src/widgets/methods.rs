@@ -1,9 +1,12 @@
-//! The methods the widgets compare, mapped onto the project's integrators (`ode::Tableau` +
-//! `ode::ExplicitRk`), and fixed-step paths that stop cleanly when a solution blows up.
+//! The methods the widgets compare, mapped onto the numerics core (`ode::Method`, or a
+//! `Tableau` through `ode::solve_tableau`), and drawable fixed-step paths that stop cleanly when
+//! a solution blows up (`Outcome::Diverged`).
 
 use serde::{Deserialize, Serialize};
 
-use crate::ode::{ExplicitRk, System, Tableau};
+use std::sync::OnceLock;
+
+use crate::ode::{Method, Outcome, Scheme, Solution, System, Tableau, solve_fixed, solve_tableau};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum MethodId {
@@ -38,7 +41,7 @@ impl MethodId {
             MethodId::Midpoint => Tableau::midpoint(),
             MethodId::Heun => Tableau::heun(),
             MethodId::Rk4 => Tableau::rk4(),
-            MethodId::Rk4Typo => rk4_typo(),
+            MethodId::Rk4Typo => rk4_typo().clone(),
             MethodId::Exact => return None,
         })
     }
@@ -56,17 +59,30 @@ impl MethodId {
     }
 }
 
-/// RK4 as the notes print it: the last stage samples at `x0 + k3/2` (ERRATA 1).
-pub fn rk4_typo() -> Tableau {
-    let mut t = Tableau::rk4();
-    t.name = "RK4 (typo)".into();
-    t.a[3] = vec![0.0, 0.0, 0.5, 0.0];
-    t.c[3] = 0.5;
-    t
+/// RK4 as the notes print it: the last stage samples at `x0 + k3/2` (ERRATA 1), from the
+/// numerics core (`slides/tableaux/rk4-typo.ron` is the same tableau as a file).
+pub fn rk4_typo() -> &'static Tableau {
+    static TYPO: OnceLock<Tableau> = OnceLock::new();
+    TYPO.get_or_init(Tableau::rk4_typo)
 }
 
-/// A fixed-step path: `ts[i]` and the state `xs[i]`; `diverged_at` is set when the state left
-/// `|x| ≤ bound` or became non-finite (the path stops there, so nothing draws NaN).
+impl MethodId {
+    /// The integrator in the numerics core; `None` for `Exact`.
+    pub fn scheme(self) -> Option<Scheme<'static>> {
+        Some(match self {
+            MethodId::Euler => Scheme::Method(Method::Euler),
+            MethodId::Midpoint => Scheme::Method(Method::Midpoint),
+            MethodId::Heun => Scheme::Method(Method::Heun),
+            MethodId::Rk4 => Scheme::Method(Method::Rk4),
+            MethodId::Rk4Typo => Scheme::Tableau(rk4_typo()),
+            MethodId::Exact => return None,
+        })
+    }
+}
+
+/// A fixed-step path for drawing: `ts[i]` and the state `xs[i]`; `diverged_at` is set when
+/// the run reported `Outcome::Diverged` (the state left `|x| ≤ bound` or became non-finite).
+/// The path stops at the last state inside the bound, so nothing draws NaN or 1e300.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Path {
     pub ts: Vec<f64>,
@@ -79,39 +95,47 @@ impl Path {
     pub fn last(&self) -> &[f64] {
         self.xs.last().map(|v| v.as_slice()).unwrap_or(&[])
     }
+
+    /// The drawable part of a solution from `ode::solve_fixed` / `solve_tableau`.
+    pub fn from_solution(sol: &Solution, bound: f64) -> Self {
+        let inside = |x: &[f64]| x.iter().all(|v| v.is_finite() && v.abs() <= bound);
+        let mut path = Path {
+            f_evals: sol.f_evals as usize,
+            diverged_at: match sol.outcome {
+                Outcome::Finished => None,
+                Outcome::Diverged { t } | Outcome::Failed { t, .. } => Some(t),
+            },
+            ..Default::default()
+        };
+        for (i, &t) in sol.ts.iter().enumerate() {
+            let x = sol.state(i);
+            if !inside(x) {
+                break;
+            }
+            path.ts.push(t);
+            path.xs.push(x.to_vec());
+        }
+        path
+    }
 }
 
-/// Integrates from `(t0, x0)` with `steps` steps of size `h` (capped at `max_steps`).
+/// Integrates from `(t0, x0)` with `steps` steps of size `h` by the numerics core's fixed-step
+/// driver, stopping at the bound.
 pub fn fixed_path<S: System + ?Sized>(
     sys: &S,
-    tableau: Tableau,
+    scheme: Scheme<'_>,
     t0: f64,
     x0: &[f64],
     h: f64,
     steps: usize,
     bound: f64,
 ) -> Path {
-    let stages = tableau.stages();
-    let mut rk = ExplicitRk::new(tableau, x0.len());
-    let mut x = x0.to_vec();
-    let mut path = Path {
-        ts: vec![t0],
-        xs: vec![x.clone()],
-        ..Default::default()
+    let t_end = t0 + steps as f64 * h;
+    let sol = match scheme {
+        Scheme::Method(m) => solve_fixed(sys, m, t0, x0, h, t_end, bound),
+        Scheme::Tableau(t) => solve_tableau(sys, t, t0, x0, h, t_end, bound),
     };
-    for i in 0..steps {
-        let t = t0 + i as f64 * h;
-        rk.step(sys, t, &mut x, h);
-        path.f_evals += stages;
-        let t_new = t0 + (i + 1) as f64 * h;
-        if x.iter().any(|v| !v.is_finite() || v.abs() > bound) {
-            path.diverged_at = Some(t_new);
-            break;
-        }
-        path.ts.push(t_new);
-        path.xs.push(x.clone());
-    }
-    path
+    Path::from_solution(&sol, bound)
 }
 
 /// Steps needed to reach `t_end` from `t0` with step `h`, capped so a tiny `h` cannot stall
@@ -134,7 +158,7 @@ mod tests {
         let sys = FnSystem::new(1, |_t, x: &[f64], d: &mut [f64]| d[0] = x[0]);
         let err = |m: MethodId, h: f64| {
             let n = steps_for(0.0, 1.0, h, 1 << 20);
-            let p = fixed_path(&sys, m.tableau().unwrap(), 0.0, &[1.0], h, n, 1e9);
+            let p = fixed_path(&sys, m.scheme().unwrap(), 0.0, &[1.0], h, n, 1e9);
             (p.last()[0] - 1f64.exp()).abs()
         };
         for m in [
@@ -151,7 +175,15 @@ mod tests {
     #[test]
     fn divergence_stops_the_path() {
         let sys = FnSystem::new(1, |_t, x: &[f64], d: &mut [f64]| d[0] = -50.0 * x[0]);
-        let p = fixed_path(&sys, Tableau::euler(), 0.0, &[1.0], 0.1, 1000, 1e6);
+        let p = fixed_path(
+            &sys,
+            MethodId::Euler.scheme().unwrap(),
+            0.0,
+            &[1.0],
+            0.1,
+            1000,
+            1e6,
+        );
         assert!(p.diverged_at.is_some());
         assert!(
             p.xs.iter()

@@ -76,6 +76,12 @@ pub trait SlideWidget: Send {
 
 impl WidgetSpec {
     pub fn instantiate(&self) -> Box<dyn SlideWidget> {
+        self.instantiate_in(None)
+    }
+
+    /// Like [`instantiate`](Self::instantiate), resolving files the spec names (tableaux)
+    /// against `base_dir`, the deck's folder.
+    pub fn instantiate_in(&self, base_dir: Option<&std::path::Path>) -> Box<dyn SlideWidget> {
         match self {
             WidgetSpec::SlopeField(s) => Box::new(slope_field::SlopeField::new(s.clone())),
             WidgetSpec::StepConstruction(s) => {
@@ -86,7 +92,7 @@ impl WidgetSpec {
             WidgetSpec::Taylor(s) => Box::new(taylor::Taylor::new(s.clone())),
             WidgetSpec::Convergence(s) => Box::new(convergence::Convergence::new(s.clone())),
             WidgetSpec::WorkPrecision(s) => Box::new(work_precision::WorkPrecision::new(s.clone())),
-            WidgetSpec::Stability(s) => Box::new(stability::Stability::new(s.clone())),
+            WidgetSpec::Stability(s) => Box::new(stability::Stability::new_in(s.clone(), base_dir)),
             WidgetSpec::RigidBody(s) => Box::new(rigid_body::RigidBodyView::new(s.clone())),
         }
     }

@@ -112,7 +112,7 @@ impl Neptune {
     pub fn path(&self, m: MethodId) -> Path {
         let h = self.spec.h.clamp(H_RANGE.0, H_RANGE.1);
         let n = steps_for(0.0, self.spec.t_end, h, 10_000);
-        let tab = m.tableau().unwrap();
+        let tab = m.scheme().unwrap();
         match self.spec.problem {
             NeptuneProblem::Decay { lambda } => fixed_path(
                 &Field1::Decay { k: -lambda }.system(),
@@ -140,6 +140,7 @@ impl Neptune {
 impl SlideWidget for Neptune {
     fn ui(&mut self, ui: &mut egui::Ui) {
         style::projector_text(ui);
+        let ink = style::ink(ui);
         let k = style::keys(ui);
         if k.h_up {
             self.spec.h *= style::H_KEY_FACTOR;
@@ -205,7 +206,7 @@ impl SlideWidget for Neptune {
                     [0.0, -CLAMP * 1.1],
                     [t_end, CLAMP * 1.1],
                 ));
-                p.line(Line::new("exact", exact).color(style::EXACT).width(2.0));
+                p.line(Line::new("exact", exact).color(ink).width(2.0));
                 for (m, (pts, exit)) in &paths {
                     let color = style::method_color(*m);
                     p.line(

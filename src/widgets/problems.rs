@@ -113,7 +113,7 @@ impl Field2 {
 pub fn reference_path<S: System>(sys: &S, t0: f64, x0: &[f64], t_end: f64) -> super::methods::Path {
     let h = ((t_end - t0) / 2000.0).max(1e-6);
     let n = steps_for(t0, t_end, h, 4000);
-    fixed_path(sys, MethodId::Rk4.tableau().unwrap(), t0, x0, h, n, 1e12)
+    fixed_path(sys, MethodId::Rk4.scheme().unwrap(), t0, x0, h, n, 1e12)
 }
 
 #[cfg(test)]

@@ -123,7 +123,7 @@ impl SlopeField {
             .shown()
             .into_iter()
             .map(|m| {
-                let p = fixed_path(sys, m.tableau().unwrap(), t0, &x0, h, n, bound);
+                let p = fixed_path(sys, m.scheme().unwrap(), t0, &x0, h, n, bound);
                 let err = if p.diverged_at.is_some() {
                     None
                 } else {
@@ -187,6 +187,7 @@ impl SlopeField {
 impl SlideWidget for SlopeField {
     fn ui(&mut self, ui: &mut egui::Ui) {
         style::projector_text(ui);
+        let ink = style::ink(ui);
         let k = style::keys(ui);
         if k.h_up {
             self.spec.h *= style::H_KEY_FACTOR;
@@ -277,7 +278,7 @@ impl SlideWidget for SlopeField {
             if show_exact {
                 p.line(
                     Line::new("exact", to_pts(&c.reference))
-                        .color(style::EXACT)
+                        .color(ink)
                         .width(2.0),
                 );
             }
@@ -293,7 +294,7 @@ impl SlideWidget for SlopeField {
             }
             p.points(
                 Points::new("start", vec![[start.0, start.1]])
-                    .color(egui::Color32::BLACK)
+                    .color(ink)
                     .radius(7.0)
                     .shape(egui_plot::MarkerShape::Circle),
             );

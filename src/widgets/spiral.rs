@@ -64,7 +64,7 @@ impl Spiral {
         let t_end = self.spec.turns.clamp(0.1, 20.0) * std::f64::consts::TAU;
         let n = steps_for(0.0, t_end, h, MAX_STEPS);
         let sys = Field2::Circle.system();
-        let p = fixed_path(&sys, m.tableau().unwrap(), 0.0, &[1.0, 0.0], h, n, 1e6);
+        let p = fixed_path(&sys, m.scheme().unwrap(), 0.0, &[1.0, 0.0], h, n, 1e6);
         let revs = (1..)
             .map(|k| (k as f64 * std::f64::consts::TAU / h).round() as usize)
             .take_while(|&i| i < p.xs.len())
@@ -102,6 +102,7 @@ impl Spiral {
 impl SlideWidget for Spiral {
     fn ui(&mut self, ui: &mut egui::Ui) {
         style::projector_text(ui);
+        let ink = style::ink(ui);
         let k = style::keys(ui);
         if k.h_up {
             self.spec.h *= style::H_KEY_FACTOR;
@@ -160,7 +161,7 @@ impl SlideWidget for Spiral {
                         .show(ui, |p| {
                             p.line(
                                 Line::new("exact", circle)
-                                    .color(style::EXACT)
+                                    .color(ink)
                                     .width(1.5)
                                     .style(egui_plot::LineStyle::dashed_loose()),
                             );

@@ -9,49 +9,28 @@ use super::methods::MethodId;
 use super::style;
 use super::{Param, SlideWidget};
 use crate::ode::Tableau;
+use crate::ode::stability::cabs;
 
-/// Just enough complex arithmetic for stability functions.
+/// A point of the complex plane, for the widget's geometry (the stability function itself is
+/// `ode::Tableau::stability`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct C(pub f64, pub f64);
 
 impl C {
-    fn add(self, o: C) -> C {
-        C(self.0 + o.0, self.1 + o.1)
-    }
-    fn mul(self, o: C) -> C {
-        C(self.0 * o.0 - self.1 * o.1, self.0 * o.1 + self.1 * o.0)
-    }
     fn scale(self, s: f64) -> C {
         C(self.0 * s, self.1 * s)
     }
-    pub fn abs(self) -> f64 {
-        self.0.hypot(self.1)
-    }
 }
 
-/// R(z) of an explicit tableau: the factor one step multiplies y by on y' = λy, z = hλ.
-/// Stage values gᵢ = 1 + z Σⱼ<ᵢ aᵢⱼ gⱼ, then R = 1 + z Σ bᵢ gᵢ.
-pub fn stability_fn(t: &Tableau, z: C) -> C {
-    let s = t.stages();
-    let mut g = vec![C(0.0, 0.0); s];
-    for i in 0..s {
-        let mut acc = C(0.0, 0.0);
-        for (j, gj) in g.iter().enumerate().take(i) {
-            acc = acc.add(gj.scale(t.a[i][j]));
-        }
-        g[i] = C(1.0, 0.0).add(z.mul(acc));
-    }
-    let mut sum = C(0.0, 0.0);
-    for (i, gi) in g.iter().enumerate() {
-        sum = sum.add(gi.scale(t.b[i]));
-    }
-    C(1.0, 0.0).add(z.mul(sum))
+/// |R(z)| of a tableau, by the numerics core.
+pub fn stability_abs(t: &Tableau, z: C) -> f64 {
+    cabs(t.stability((z.0, z.1)))
 }
 
 /// The largest h with |R(h λ)| ≤ 1 for all smaller h (bisection after a coarse scan);
 /// 0 when no positive h is stable, ∞ (capped at `h_max`) when all are.
 pub fn stable_h_limit(t: &Tableau, lambda: C, h_max: f64) -> f64 {
-    let stable = |h: f64| stability_fn(t, lambda.scale(h)).abs() <= 1.0 + 1e-12;
+    let stable = |h: f64| stability_abs(t, lambda.scale(h)) <= 1.0 + 1e-12;
     let n = 4000;
     let mut last_ok = 0.0;
     for i in 1..=n {
@@ -81,6 +60,10 @@ pub struct StabilitySpec {
     /// Further methods, e.g. written out in the deck: `(name: "Ralston", a: [...], b: [...], c: [...])`.
     #[serde(default)]
     pub tableaux: Vec<Tableau>,
+    /// Tableau files (RON, as `lectern solve` reads them), relative to the deck's folder,
+    /// e.g. `["tableaux/rk4-typo.ron"]`.
+    #[serde(default)]
+    pub files: Vec<String>,
     /// Visible window (re_min, re_max, im_min, im_max).
     #[serde(default = "default_view")]
     pub view: (f64, f64, f64, f64),
@@ -107,6 +90,8 @@ const RES: usize = 360;
 pub struct Stability {
     pub spec: StabilitySpec,
     initial: StabilitySpec,
+    /// The spec's `files`, loaded once: a tableau, or the error naming file and position.
+    loaded: Vec<Result<Tableau, String>>,
     cache: Option<(
         StabilitySpec,
         egui::TextureHandle,
@@ -116,9 +101,23 @@ pub struct Stability {
 
 impl Stability {
     pub fn new(spec: StabilitySpec) -> Self {
+        Self::new_in(spec, None)
+    }
+
+    /// Loads the spec's tableau `files` relative to `base_dir` (the deck's folder).
+    pub fn new_in(spec: StabilitySpec, base_dir: Option<&std::path::Path>) -> Self {
+        let loaded = spec
+            .files
+            .iter()
+            .map(|f| {
+                let path = base_dir.map_or_else(|| f.into(), |b| b.join(f));
+                Tableau::load(&path).map_err(|e| e.to_string())
+            })
+            .collect();
         Self {
             initial: spec.clone(),
             spec,
+            loaded,
             cache: None,
         }
     }
@@ -134,7 +133,8 @@ impl Stability {
                     .map(|t| (m.name().to_owned(), style::method_color(*m), t))
             })
             .collect();
-        for (i, t) in self.spec.tableaux.iter().enumerate() {
+        let loaded = self.loaded.iter().filter_map(|t| t.as_ref().ok());
+        for (i, t) in self.spec.tableaux.iter().chain(loaded).enumerate() {
             v.push((
                 t.name.clone(),
                 EXTRA_COLORS[i % EXTRA_COLORS.len()],
@@ -164,7 +164,7 @@ impl Stability {
         let mut contours = Vec::new();
         for (name, color, tab) in self.entries() {
             let vals: Vec<f64> = (0..RES * RES)
-                .map(|k| stability_fn(&tab, at(k % RES, k / RES)).abs() - 1.0)
+                .map(|k| stability_abs(&tab, at(k % RES, k / RES)) - 1.0)
                 .collect();
             for (k, v) in vals.iter().enumerate() {
                 if *v <= 0.0 {
@@ -238,6 +238,7 @@ fn marching_squares(vals: &[f64], at: impl Fn(usize, usize) -> C) -> Vec<[[f64; 
 impl SlideWidget for Stability {
     fn ui(&mut self, ui: &mut egui::Ui) {
         style::projector_text(ui);
+        let ink = style::ink(ui);
         if !self.cache.as_ref().is_some_and(|(s, ..)| {
             s.methods == self.spec.methods
                 && s.tableaux == self.spec.tableaux
@@ -247,6 +248,9 @@ impl SlideWidget for Stability {
             self.cache = Some((self.spec.clone(), tex, contours));
         }
         let entries = self.entries();
+        for e in self.loaded.iter().filter_map(|t| t.as_ref().err()) {
+            ui.colored_label(style::DIVERGED, e);
+        }
         ui.horizontal(|ui| {
             ui.label("|R(hλ)| ≤ 1:");
             for (name, color, _) in &entries {
@@ -316,7 +320,7 @@ impl SlideWidget for Stability {
                 if let Some(z) = z {
                     p.points(
                         egui_plot::Points::new("z = hλ", vec![z, [z[0], -z[1]]])
-                            .color(egui::Color32::BLACK)
+                            .color(ink)
                             .radius(7.0),
                     );
                 }
@@ -352,15 +356,25 @@ mod tests {
     }
 
     #[test]
-    fn rk4_stability_function_is_the_taylor_polynomial() {
-        let z = C(-0.7, 0.4);
-        let r = stability_fn(&Tableau::rk4(), z);
-        let mut sum = C(1.0, 0.0);
-        let mut term = C(1.0, 0.0);
-        for k in 1..=4 {
-            term = term.mul(z).scale(1.0 / k as f64);
-            sum = sum.add(term);
-        }
-        assert!((r.0 - sum.0).abs() < 1e-14 && (r.1 - sum.1).abs() < 1e-14);
+    fn deck_tableau_files_load_and_a_missing_one_is_an_error() {
+        let base = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("slides");
+        let spec = StabilitySpec {
+            methods: vec![MethodId::Rk4],
+            tableaux: vec![],
+            files: vec!["tableaux/rk4-typo.ron".into(), "tableaux/nope.ron".into()],
+            view: default_view(),
+            lambda: None,
+            h: 1.0,
+        };
+        let w = Stability::new_in(spec, Some(&base));
+        let entries = w.entries();
+        assert_eq!(entries.len(), 2);
+        // the typo'd RK4 is a different method: its region on the real axis ends elsewhere
+        let typo = &entries[1].2;
+        assert_eq!(typo, &Tableau::rk4_typo());
+        let lim = |t: &Tableau| stable_h_limit(t, C(-1.0, 0.0), 10.0);
+        assert!((lim(typo) - lim(&Tableau::rk4())).abs() > 0.05);
+        let err = w.loaded[1].as_ref().unwrap_err();
+        assert!(err.contains("nope.ron"), "{err}");
     }
 }

@@ -59,6 +59,8 @@ pub struct Arrow {
     pub stage: usize,
     /// Drawn faint (a sampled slope) rather than bold (a step actually taken).
     pub faint: bool,
+    /// Where the label sits relative to `to`: above-right unless a neighbour needs the room.
+    pub anchor: egui::Align2,
 }
 
 /// The construction of one step of `m` from `(t0, x0)`: arrows and the end point. The end
@@ -72,6 +74,7 @@ pub fn construct(f: Field1, m: MethodId, t0: f64, x0: f64, h: f64) -> (Vec<Arrow
             label: label.into(),
             stage,
             faint: true,
+            anchor: egui::Align2::LEFT_BOTTOM,
         }
     };
     let step = |t: f64, x: f64, dt: f64, k: f64, label: &str, stage: usize| Arrow {
@@ -80,6 +83,7 @@ pub fn construct(f: Field1, m: MethodId, t0: f64, x0: f64, h: f64) -> (Vec<Arrow
         label: label.into(),
         stage,
         faint: false,
+        anchor: egui::Align2::LEFT_BOTTOM,
     };
     let mut out = Vec::new();
     let k1 = f.f(t0, x0);
@@ -102,16 +106,25 @@ pub fn construct(f: Field1, m: MethodId, t0: f64, x0: f64, h: f64) -> (Vec<Arrow
             out.push(step(t0, x0, h / 2.0, k2, "k₂", 2));
             let k3 = f.f(t0 + h / 2.0, x0 + h / 2.0 * k2);
             out.push(slope_mark(t0 + h / 2.0, x0 + h / 2.0 * k2, k3, "", 3));
+            let k3_at = out.len();
             out.push(step(t0, x0, h, k3, "k₃", 3));
             let k4 = f.f(t0 + h, x0 + h * k3);
             out.push(slope_mark(t0 + h, x0 + h * k3, k4, "k₄", 4));
             let k = (k1 + 2.0 * k2 + 2.0 * k3 + k4) / 6.0;
             out.push(step(t0, x0, h, k, "(k₁+2k₂+2k₃+k₄)/6", 5));
+            // k₃'s step and the combination end close together at t₀ + h: the higher end
+            // gets its label above, the lower one below, so they never overlap.
+            let below = egui::Align2::LEFT_TOP;
+            if k >= k3 {
+                out[k3_at].anchor = below;
+            } else if let Some(last) = out.last_mut() {
+                last.anchor = below;
+            }
         }
     }
     let sys = f.system();
-    let tab = m.tableau().expect("a stepping method");
-    let end = fixed_path(&sys, tab, t0, &[x0], h, 1, f64::INFINITY);
+    let scheme = m.scheme().expect("a stepping method");
+    let end = fixed_path(&sys, scheme, t0, &[x0], h, 1, f64::INFINITY);
     (out, [t0 + h, end.last()[0]])
 }
 
@@ -134,6 +147,7 @@ impl StepConstruction {
 impl SlideWidget for StepConstruction {
     fn ui(&mut self, ui: &mut egui::Ui) {
         style::projector_text(ui);
+        let ink = style::ink(ui);
         // stay inside a column: the control row must not widen the plot past its share
         ui.set_max_width(ui.available_width());
         let m = match self.spec.method {
@@ -158,9 +172,13 @@ impl SlideWidget for StepConstruction {
         self.spec.stage = self.spec.stage.min(n);
         ui.horizontal_wrapped(|ui| {
             for c in [MethodId::Euler, MethodId::Midpoint, MethodId::Rk4] {
-                let text = egui::RichText::new(c.name())
-                    .color(style::method_color(c))
-                    .strong();
+                // selected: readable on the selection fill; otherwise the method's colour
+                let colour = if m == c {
+                    ui.visuals().strong_text_color()
+                } else {
+                    style::method_color(c)
+                };
+                let text = egui::RichText::new(c.name()).color(colour).strong();
                 if ui.selectable_label(m == c, text).clicked() {
                     self.spec.method = c;
                     self.spec.stage = 0;
@@ -205,7 +223,7 @@ impl SlideWidget for StepConstruction {
             .include_x(t0 - 0.1 * h)
             .include_x(t0 + 1.2 * h)
             .show(ui, |p| {
-                p.line(Line::new("exact", exact).color(style::EXACT).width(2.0));
+                p.line(Line::new("exact", exact).color(ink).width(2.0));
                 for a in arrows.iter().filter(|a| a.stage <= stage) {
                     let (c, w) = if a.faint {
                         (style::FIELD, 0.0)
@@ -238,21 +256,17 @@ impl SlideWidget for StepConstruction {
                                 pos,
                                 egui::RichText::new(&a.label).size(20.0).color(c),
                             )
-                            .anchor(egui::Align2::LEFT_BOTTOM),
+                            .anchor(a.anchor),
                         );
                     }
                 }
-                p.points(
-                    Points::new("x0", vec![[t0, x0]])
-                        .color(egui::Color32::BLACK)
-                        .radius(6.0),
-                );
+                p.points(Points::new("x0", vec![[t0, x0]]).color(ink).radius(6.0));
                 if stage == n {
                     p.points(Points::new("x1", vec![end]).color(color).radius(7.0));
                     if let Some(x) = truth {
                         p.points(
                             Points::new("exact x(t0+h)", vec![[t0 + h, x]])
-                                .color(style::EXACT)
+                                .color(ink)
                                 .radius(5.0),
                         );
                     }

@@ -5,7 +5,9 @@ use egui::Color32;
 
 use super::methods::MethodId;
 
-pub const EXACT: Color32 = Color32::from_rgb(30, 30, 30);
+/// Labels and checkboxes of the exact solution: a grey readable on light and dark slides.
+/// Exact curves themselves are drawn in [`ink`], the theme's strongest text colour.
+pub const EXACT: Color32 = Color32::from_gray(140);
 pub const EULER: Color32 = Color32::from_rgb(213, 94, 0);
 pub const MIDPOINT: Color32 = Color32::from_rgb(0, 114, 178);
 pub const RK4: Color32 = Color32::from_rgb(0, 158, 115);
@@ -29,24 +31,33 @@ pub fn method_color(m: MethodId) -> Color32 {
 /// Line width of solution paths, in points.
 pub const PATH_WIDTH: f32 = 3.0;
 
-/// Makes text in `ui` large enough for the back row (applies to this ui and its children).
+/// The theme's strongest text colour: exact solutions, start points, markers.
+pub fn ink(ui: &egui::Ui) -> Color32 {
+    ui.visuals().strong_text_color()
+}
+
+/// Makes text in `ui` at least large enough for the back row (applies to this ui and its
+/// children). Never shrinks: the slide renderer scales text with the canvas (large on a 4K
+/// projector), and that must win.
 pub fn projector_text(ui: &mut egui::Ui) {
-    use egui::{FontId, TextStyle};
+    use egui::TextStyle;
     // Inside a slide the renderer has already sized text to the canvas (app::theme::CANVAS_STYLE
     // marks it), so a 4K projector and a laptop window show the same proportions: keep that.
     if crate::app::theme::is_canvas_style(ui.style()) {
         return;
     }
     let s = ui.style_mut();
-    s.text_styles
-        .insert(TextStyle::Body, FontId::proportional(20.0));
-    s.text_styles
-        .insert(TextStyle::Button, FontId::proportional(20.0));
-    s.text_styles
-        .insert(TextStyle::Small, FontId::proportional(16.0));
-    s.text_styles
-        .insert(TextStyle::Monospace, FontId::monospace(18.0));
-    s.spacing.slider_width = 220.0;
+    for (style, min) in [
+        (TextStyle::Body, 20.0),
+        (TextStyle::Button, 20.0),
+        (TextStyle::Small, 16.0),
+        (TextStyle::Monospace, 18.0),
+    ] {
+        if let Some(font) = s.text_styles.get_mut(&style) {
+            font.size = font.size.max(min);
+        }
+    }
+    s.spacing.slider_width = s.spacing.slider_width.max(220.0);
 }
 
 /// The widget keys, documented in docs/slides.md: `-`/`+` step size, `[`/`]` step through,

@@ -121,6 +121,7 @@ impl Taylor {
 impl SlideWidget for Taylor {
     fn ui(&mut self, ui: &mut egui::Ui) {
         style::projector_text(ui);
+        let ink = style::ink(ui);
         let k = style::keys(ui);
         if k.forward {
             self.spec.order = (self.spec.order + 1).min(12);
@@ -193,18 +194,10 @@ impl SlideWidget for Taylor {
                             .width(w),
                     );
                 }
-                p.line(
-                    Line::new(s.function.name(), f_pts)
-                        .color(style::EXACT)
-                        .width(3.5),
-                );
+                p.line(Line::new(s.function.name(), f_pts).color(ink).width(3.5));
                 let fa = s.function.eval(s.a);
                 if fa.is_finite() {
-                    p.points(
-                        Points::new("a", vec![[s.a, fa]])
-                            .color(egui::Color32::BLACK)
-                            .radius(7.0),
-                    );
+                    p.points(Points::new("a", vec![[s.a, fa]]).color(ink).radius(7.0));
                 }
             });
     }

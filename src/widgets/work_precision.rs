@@ -11,52 +11,28 @@ use egui_plot::{Line, Points};
 use serde::{Deserialize, Serialize};
 
 use super::convergence::log_axes_plot;
-use super::methods::{MethodId, fixed_path, steps_for};
+use super::methods::{MethodId, steps_for};
 use super::problems::Field2;
 use super::style::{self, fmt_num};
 use super::{Param, SlideWidget};
-use crate::ode::Tableau;
+use std::sync::OnceLock;
+
+use crate::ode::study::max_error;
+use crate::ode::{Scheme, Tableau, solve_fixed_final};
 
 /// Snapshot tests set this: timings then come from a fixed cost per f-evaluation and the study
 /// runs on the calling thread, so pictures are reproducible. Live, time is measured.
 pub static DETERMINISTIC: AtomicBool = AtomicBool::new(false);
 
-/// Dormand–Prince 5(4), the fifth-order weights used as a fixed-step method (6 stages).
-pub fn dopri5_fixed() -> Tableau {
-    Tableau {
-        name: "RK5 (Dormand–Prince)".into(),
-        a: vec![
-            vec![0.0; 6],
-            vec![1.0 / 5.0, 0.0, 0.0, 0.0, 0.0, 0.0],
-            vec![3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0],
-            vec![44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0, 0.0, 0.0, 0.0],
-            vec![
-                19372.0 / 6561.0,
-                -25360.0 / 2187.0,
-                64448.0 / 6561.0,
-                -212.0 / 729.0,
-                0.0,
-                0.0,
-            ],
-            vec![
-                9017.0 / 3168.0,
-                -355.0 / 33.0,
-                46732.0 / 5247.0,
-                49.0 / 176.0,
-                -5103.0 / 18656.0,
-                0.0,
-            ],
-        ],
-        b: vec![
-            35.0 / 384.0,
-            0.0,
-            500.0 / 1113.0,
-            125.0 / 192.0,
-            -2187.0 / 6784.0,
-            11.0 / 84.0,
-        ],
-        c: vec![0.0, 0.2, 0.3, 0.8, 8.0 / 9.0, 1.0],
-    }
+/// Dormand–Prince 5(4)'s fifth-order weights as a fixed-step method (6 stages), from the
+/// numerics core.
+pub fn dopri5_fixed() -> &'static Tableau {
+    static DP: OnceLock<Tableau> = OnceLock::new();
+    DP.get_or_init(|| {
+        let mut t = Tableau::dopri5();
+        t.name = "RK5 (Dormand–Prince)".into();
+        t
+    })
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -90,8 +66,9 @@ pub struct Sample {
     pub error: f64,
 }
 
-/// The study for one method (pure; runs on any thread).
-pub fn study(spec: &WorkPrecisionSpec, tab: &Tableau) -> Vec<Sample> {
+/// The study for one method (pure; runs on any thread): `ode::solve_fixed_final` at each h,
+/// error by `ode::study::max_error` against the exact circle.
+pub fn study(spec: &WorkPrecisionSpec, scheme: Scheme<'_>) -> Vec<Sample> {
     let sys = Field2::Circle.system();
     let exact = Field2::Circle.exact([1.0, 0.0], spec.t_end).unwrap();
     let h_max = 1.0;
@@ -101,27 +78,26 @@ pub fn study(spec: &WorkPrecisionSpec, tab: &Tableau) -> Vec<Sample> {
             let h = spec.t_end / n as f64;
             let start = Instant::now();
             let mut reps = 0;
-            let p = loop {
-                let p = fixed_path(&sys, tab.clone(), 0.0, &[1.0, 0.0], h, n, 1e12);
+            let sol = loop {
+                let sol = solve_fixed_final(&sys, scheme, 0.0, &[1.0, 0.0], h, spec.t_end, 1e12);
                 reps += 1;
                 // repeat short runs so the clock resolves them
                 if start.elapsed().as_secs_f64() > 2e-3 || reps >= 50 {
-                    break p;
+                    break sol;
                 }
             };
             let secs = if DETERMINISTIC.load(Ordering::Relaxed) {
-                p.f_evals as f64 * 50e-9
+                sol.f_evals as f64 * 50e-9
             } else {
                 start.elapsed().as_secs_f64() / reps as f64
             };
-            let e = p.last();
-            let error = if p.diverged_at.is_some() {
-                f64::INFINITY
+            let error = if sol.finished() {
+                max_error(sol.last().1, &exact)
             } else {
-                (e[0] - exact[0]).hypot(e[1] - exact[1])
+                f64::INFINITY
             };
             Sample {
-                f_evals: p.f_evals,
+                f_evals: sol.f_evals as usize,
                 secs,
                 error,
             }
@@ -150,19 +126,19 @@ impl WorkPrecision {
         }
     }
 
-    fn methods(&self) -> Vec<(String, egui::Color32, Tableau)> {
+    fn methods(&self) -> Vec<(String, egui::Color32, Scheme<'static>)> {
         let mut v: Vec<_> = [MethodId::Euler, MethodId::Midpoint, MethodId::Rk4]
             .iter()
             .map(|m| {
                 (
                     m.name().to_owned(),
                     style::method_color(*m),
-                    m.tableau().unwrap(),
+                    m.scheme().unwrap(),
                 )
             })
             .collect();
         if self.spec.rk5 {
-            v.push(("RK5".into(), style::DOPRI, dopri5_fixed()));
+            v.push(("RK5".into(), style::DOPRI, Scheme::Tableau(dopri5_fixed())));
         }
         v
     }
@@ -176,7 +152,7 @@ impl WorkPrecision {
         if DETERMINISTIC.load(Ordering::Relaxed) {
             self.results = jobs
                 .into_iter()
-                .map(|(n, c, t)| (n, c, study(&spec, &t)))
+                .map(|(n, c, t)| (n, c, study(&spec, t)))
                 .collect();
             self.pending = None;
             return;
@@ -186,7 +162,7 @@ impl WorkPrecision {
         // Dropping the receiver (spec changed again) makes the next send fail: the thread stops.
         std::thread::spawn(move || {
             for (name, color, tab) in jobs {
-                let r = study(&spec, &tab);
+                let r = study(&spec, tab);
                 if tx.send((name, color, r)).is_err() {
                     return;
                 }
@@ -306,10 +282,10 @@ mod tests {
             levels: 6,
             rk5: true,
         };
-        let rk5 = study(&spec, &dopri5_fixed());
+        let rk5 = study(&spec, Scheme::Tableau(dopri5_fixed()));
         let order = (rk5[2].error / rk5[3].error).log2();
         assert!((order - 5.0).abs() < 0.3, "{order}");
-        let rk4 = study(&spec, &Tableau::rk4());
+        let rk4 = study(&spec, Scheme::Method(crate::ode::Method::Rk4));
         // at ~the same work, RK5's error is smaller
         assert!(rk5[3].error < rk4[3].error);
     }
