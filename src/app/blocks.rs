@@ -38,8 +38,11 @@ pub(crate) fn widget_style(base: &egui::Style, look: &Look, theme: Theme) -> egu
     style.visuals.selection.bg_fill = p.accent.gamma_multiply(0.6);
     style.interaction.selectable_labels = false;
     // The canvas scale puts rects on fractional points by design; egui's debug-build marker for
-    // that would otherwise show up in snapshots.
-    style.debug.show_unaligned = false;
+    // that would otherwise show up in snapshots. (The field exists only in debug builds.)
+    #[cfg(debug_assertions)]
+    {
+        style.debug.show_unaligned = false;
+    }
 
     let text = |units: f32, family: FontFamily| FontId::new(look.scaled(units), family);
     let prop = FontFamily::Proportional;
