@@ -313,3 +313,77 @@ fn params_round_trip_through_reload_and_reset() {
         assert_eq!(reloaded.spec(), spec, "{}: reset", spec.kind());
     }
 }
+
+/// Frame cost of the long-path widgets while the lecturer drags `h` (a new h every frame) and
+/// while nothing changes, in this build on this adapter. A measurement, not a test: it prints
+/// and asserts nothing about time (run with `cargo test --test widgets frame_cost -- --ignored
+/// --nocapture`).
+#[test]
+#[ignore]
+fn frame_cost_while_dragging_h() {
+    use std::time::Instant;
+    let cases = [
+        (
+            "slope field, 20 000 steps",
+            "SlopeField((field: OneD(Forced), start: (0.0, 1.5), h: 0.01, t_end: 200.0, view: (0.0, 200.0, -1.5, 2.0)))",
+            0.01,
+        ),
+        (
+            "slope field phase (VdP), 6 000 steps",
+            "SlopeField((field: Phase(VanDerPol(mu: 1.0)), start: (0.5, 0.0), h: 0.01, t_end: 60.0, view: (-3.0, 3.0, -3.0, 3.0)))",
+            0.01,
+        ),
+        (
+            "spiral, 3 × 20 000 steps",
+            "Spiral((h: 0.005, turns: 20.0))",
+            0.005,
+        ),
+    ];
+    for (name, spec, h0) in cases {
+        let mut w = widget(spec);
+        let frames = 20;
+        let drag = |w: &mut Box<dyn SlideWidget>, k: usize| {
+            for mut p in w.params() {
+                if p.id == "h" {
+                    p.set(params::ParamSnapshot::F64(h0 * (1.0 + 0.002 * k as f64)))
+                        .unwrap();
+                }
+            }
+        };
+        drag(&mut w, 0);
+        let first = Instant::now();
+        let mut h = harness(w);
+        let first = first.elapsed();
+        // steady frames: same parameters
+        let t = Instant::now();
+        for _ in 0..frames {
+            h.step();
+        }
+        let steady = t.elapsed() / frames as u32;
+        let t = Instant::now();
+        h.render().unwrap();
+        let render = t.elapsed();
+        drop(h);
+        // dragging: h changes before every frame
+        let k = std::cell::Cell::new(0usize);
+        let mut w = widget(spec);
+        drag(&mut w, 0);
+        let mut hd = Harness::builder()
+            .with_size(SIZE)
+            .with_context_setup(|ctx| lectern::math::install_egui_fallback_fonts(ctx))
+            .wgpu()
+            .build_ui(move |ui| {
+                k.set(k.get() + 1);
+                drag(&mut w, k.get());
+                w.ui(ui);
+            });
+        let t = Instant::now();
+        for _ in 0..frames {
+            hd.step();
+        }
+        let dragging = t.elapsed() / frames as u32;
+        println!(
+            "{name}: first 3 frames {first:.1?}, steady frame {steady:.2?}, dragging h {dragging:.2?}/frame, one wgpu render {render:.1?}"
+        );
+    }
+}

@@ -138,6 +138,28 @@ pub fn fixed_path<S: System + ?Sized>(
     Path::from_solution(&sol, bound)
 }
 
+/// At most this many points of a path are drawn: a plot line is a few hundred pixels wide, and
+/// tessellating 20 000 points every frame stalls the software renderer.
+pub const MAX_DRAWN_POINTS: usize = 2048;
+
+/// Step markers are drawn only up to this many steps; beyond it they merge into the line.
+pub const MAX_STEP_MARKERS: usize = 200;
+
+/// Every k-th point of `pts` (k chosen so at most `max` remain), always keeping the first and
+/// last, so a long path draws at bounded cost and still ends where the solve ended.
+pub fn decimate(pts: &[[f64; 2]], max: usize) -> Vec<[f64; 2]> {
+    let max = max.max(2);
+    if pts.len() <= max {
+        return pts.to_vec();
+    }
+    let stride = (pts.len() - 1).div_ceil(max - 1);
+    let mut out: Vec<[f64; 2]> = pts.iter().step_by(stride).copied().collect();
+    if (pts.len() - 1) % stride != 0 {
+        out.push(*pts.last().expect("non-empty"));
+    }
+    out
+}
+
 /// Steps needed to reach `t_end` from `t0` with step `h`, capped so a tiny `h` cannot stall
 /// a frame.
 pub fn steps_for(t0: f64, t_end: f64, h: f64, cap: usize) -> usize {
@@ -151,6 +173,21 @@ pub fn steps_for(t0: f64, t_end: f64, h: f64, cap: usize) -> usize {
 mod tests {
     use super::*;
     use crate::ode::FnSystem;
+
+    #[test]
+    fn decimate_bounds_the_count_and_keeps_both_ends() {
+        let pts: Vec<[f64; 2]> = (0..20_001).map(|i| [i as f64, 0.0]).collect();
+        for max in [2, 3, 2000, 20_001, 30_000] {
+            let d = decimate(&pts, max);
+            assert!(d.len() <= max.max(2), "{max}: {}", d.len());
+            assert_eq!(d[0], pts[0]);
+            assert_eq!(d.last(), pts.last());
+        }
+        assert_eq!(decimate(&pts[..10], 2000), pts[..10].to_vec());
+        let d = decimate(&pts[..10_000], 2000);
+        // an integer stride keeps at least half the budget
+        assert!(d.len() <= 2000 && d.len() > 1000, "{}", d.len());
+    }
 
     #[test]
     fn typo_rk4_is_only_second_order() {

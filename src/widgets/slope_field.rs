@@ -5,7 +5,9 @@
 use egui_plot::{Arrows, Line, Plot, PlotPoint, PlotPoints, Points};
 use serde::{Deserialize, Serialize};
 
-use super::methods::{MethodId, Path, fixed_path, steps_for};
+use super::methods::{
+    MAX_DRAWN_POINTS, MAX_STEP_MARKERS, MethodId, Path, decimate, fixed_path, steps_for,
+};
 use super::problems::{Field1, Field2, reference_path};
 use super::style::{self, fmt_num};
 use super::{Param, SlideWidget};
@@ -56,15 +58,31 @@ fn yes() -> bool {
 const H_RANGE: (f64, f64) = (0.01, 2.0);
 const MAX_STEPS: usize = 20_000;
 
-struct Computed {
-    paths: Vec<(MethodId, Path, Option<f64>)>,
-    reference: Path,
+/// One method's solve reduced to what a frame needs: the full solve is used for the error
+/// and then dropped; only a decimated polyline (and the step markers when few) is kept.
+struct DrawnPath {
+    method: MethodId,
+    line: Vec<[f64; 2]>,
+    /// every step, only when there are at most MAX_STEP_MARKERS of them
+    markers: Vec<[f64; 2]>,
+    error: Option<f64>,
+    diverged_at: Option<f64>,
 }
+
+struct Computed {
+    paths: Vec<DrawnPath>,
+    reference: Vec<[f64; 2]>,
+}
+
+/// The slope marks, keyed by what they depend on (not the start point or h).
+type MarksKey = (FieldKind, (f64, f64, f64, f64), usize);
+type Marks = (Vec<[f64; 2]>, Vec<[f64; 2]>);
 
 pub struct SlopeField {
     pub spec: SlopeFieldSpec,
     initial: SlopeFieldSpec,
     cache: Option<(SlopeFieldSpec, Computed)>,
+    marks_cache: Option<(MarksKey, Marks)>,
 }
 
 impl SlopeField {
@@ -73,6 +91,7 @@ impl SlopeField {
             initial: spec.clone(),
             spec,
             cache: None,
+            marks_cache: None,
         }
     }
 
@@ -119,6 +138,7 @@ impl SlopeField {
         let bound = 1e3 * extent;
         let n = steps_for(t0, s.t_end, h, MAX_STEPS);
         let reference = reference_path(sys, t0, &x0, s.t_end.max(t0 + 1e-9));
+        let ref_end = *reference.ts.last().unwrap_or(&t0);
         let paths = self
             .shown()
             .into_iter()
@@ -128,8 +148,14 @@ impl SlopeField {
                     None
                 } else {
                     let t_last = *p.ts.last().unwrap();
-                    let truth = exact(t0, &x0, t_last)
-                        .unwrap_or_else(|| reference_path(sys, t0, &x0, t_last).last().to_vec());
+                    // no closed form: the reference solve, reused when it ends where the path does
+                    let truth = exact(t0, &x0, t_last).unwrap_or_else(|| {
+                        if (t_last - ref_end).abs() <= 1e-9 * t_last.abs().max(1.0) {
+                            reference.last().to_vec()
+                        } else {
+                            reference_path(sys, t0, &x0, t_last).last().to_vec()
+                        }
+                    });
                     let e = p
                         .last()
                         .iter()
@@ -144,12 +170,53 @@ impl SlopeField {
         (paths, reference)
     }
 
+    /// A path as plot points: (t, x) in the t–x plane, (x, y) in the phase plane.
+    fn plot_points(&self, path: &Path) -> Vec<[f64; 2]> {
+        if matches!(self.spec.field, FieldKind::Phase(_)) {
+            path.xs.iter().map(|x| [x[0], x[1]]).collect()
+        } else {
+            path.ts
+                .iter()
+                .zip(&path.xs)
+                .map(|(t, x)| [*t, x[0]])
+                .collect()
+        }
+    }
+
+    /// Re-solves only when the parameters changed; frames in between only draw.
     fn update(&mut self) {
         if self.cache.as_ref().is_some_and(|(s, _)| *s == self.spec) {
             return;
         }
         let (paths, reference) = self.compute();
+        let paths = paths
+            .into_iter()
+            .map(|(method, path, error)| {
+                let pts = self.plot_points(&path);
+                DrawnPath {
+                    method,
+                    line: decimate(&pts, MAX_DRAWN_POINTS),
+                    markers: if pts.len() <= MAX_STEP_MARKERS {
+                        pts
+                    } else {
+                        Vec::new()
+                    },
+                    error,
+                    diverged_at: path.diverged_at,
+                }
+            })
+            .collect();
+        let reference = decimate(&self.plot_points(&reference), MAX_DRAWN_POINTS);
         self.cache = Some((self.spec.clone(), Computed { paths, reference }));
+    }
+
+    fn update_marks(&mut self) {
+        let s = &self.spec;
+        let key = (s.field, s.view, s.grid);
+        if self.marks_cache.as_ref().is_some_and(|(k, _)| *k == key) {
+            return;
+        }
+        self.marks_cache = Some((key, self.marks()));
     }
 
     /// Short marks along the field, centred on a grid, their length a fixed share of a cell
@@ -217,7 +284,10 @@ impl SlideWidget for SlopeField {
             }
         });
         self.update();
-        let (origins, tips) = self.marks();
+        self.update_marks();
+        let Some((_, (origins, tips))) = &self.marks_cache else {
+            return;
+        };
         let phase = matches!(self.spec.field, FieldKind::Phase(_));
         let Some((_, c)) = &self.cache else { return };
         let (x0, x1, y0, y1) = self.spec.view;
@@ -229,16 +299,14 @@ impl SlideWidget for SlopeField {
         ui.horizontal(|ui| {
             ui.label(egui::RichText::new(label).strong());
             ui.label("  global error at the end:");
-            for (m, p, e) in &c.paths {
-                let txt = match (e, p.diverged_at) {
+            for p in &c.paths {
+                let m = p.method;
+                let txt = match (p.error, p.diverged_at) {
                     (_, Some(t)) => format!("{} diverged at t = {}", m.name(), fmt_num(t)),
-                    (Some(e), None) => format!("{} {}", m.name(), fmt_num(*e)),
+                    (Some(e), None) => format!("{} {}", m.name(), fmt_num(e)),
                     (None, None) => format!("{} –", m.name()),
                 };
-                ui.colored_label(
-                    style::method_color(*m),
-                    egui::RichText::new(txt).monospace(),
-                );
+                ui.colored_label(style::method_color(m), egui::RichText::new(txt).monospace());
             }
         });
         let show_exact = self.spec.exact;
@@ -259,38 +327,36 @@ impl SlideWidget for SlopeField {
         let resp = plot.show(ui, |p| {
             p.set_plot_bounds(egui_plot::PlotBounds::from_min_max([x0, y0], [x1, y1]));
             p.add(
-                Arrows::new("field", PlotPoints::from(origins), PlotPoints::from(tips))
-                    .color(style::FIELD)
-                    .tip_length(if phase { 5.0 } else { 0.0 })
-                    .allow_hover(false),
+                Arrows::new(
+                    "field",
+                    PlotPoints::from(origins.clone()),
+                    PlotPoints::from(tips.clone()),
+                )
+                .color(style::FIELD)
+                .tip_length(if phase { 5.0 } else { 0.0 })
+                .allow_hover(false),
             );
-            let to_pts = |path: &Path| -> Vec<[f64; 2]> {
-                if phase {
-                    path.xs.iter().map(|x| [x[0], x[1]]).collect()
-                } else {
-                    path.ts
-                        .iter()
-                        .zip(&path.xs)
-                        .map(|(t, x)| [*t, x[0]])
-                        .collect()
-                }
-            };
             if show_exact {
                 p.line(
-                    Line::new("exact", to_pts(&c.reference))
+                    Line::new("exact", c.reference.clone())
                         .color(ink)
                         .width(2.0),
                 );
             }
-            for (m, path, _) in &c.paths {
-                let pts = to_pts(path);
-                let color = style::method_color(*m);
+            for path in &c.paths {
+                let (m, color) = (path.method, style::method_color(path.method));
                 p.line(
-                    Line::new(m.name(), pts.clone())
+                    Line::new(m.name(), path.line.clone())
                         .color(color)
                         .width(style::PATH_WIDTH),
                 );
-                p.points(Points::new(m.name(), pts).color(color).radius(3.5));
+                if !path.markers.is_empty() {
+                    p.points(
+                        Points::new(m.name(), path.markers.clone())
+                            .color(color)
+                            .radius(3.5),
+                    );
+                }
             }
             p.points(
                 Points::new("start", vec![[start.0, start.1]])

@@ -5,7 +5,7 @@
 use egui_plot::{Line, Plot, PlotPoints, Points};
 use serde::{Deserialize, Serialize};
 
-use super::methods::{MethodId, Path, fixed_path, steps_for};
+use super::methods::{MAX_DRAWN_POINTS, MethodId, Path, decimate, fixed_path, steps_for};
 use super::problems::Field2;
 use super::style::{self, fmt_num};
 use super::{Param, SlideWidget};
@@ -35,10 +35,20 @@ fn yes() -> bool {
 const H_RANGE: (f64, f64) = (0.005, 1.0);
 const MAX_STEPS: usize = 20_000;
 
+/// One panel's drawing data, kept between frames: the full solve is reduced to a decimated
+/// polyline, its end point, the plot's half-width and the radius after each revolution.
+struct Panel {
+    method: MethodId,
+    line: Vec<[f64; 2]>,
+    end: [f64; 2],
+    lim: f64,
+    revs: Vec<f64>,
+}
+
 pub struct Spiral {
     pub spec: SpiralSpec,
     initial: SpiralSpec,
-    cache: Option<(SpiralSpec, Vec<(MethodId, Path, Vec<f64>)>)>,
+    cache: Option<(SpiralSpec, Vec<Panel>)>,
 }
 
 impl Spiral {
@@ -91,8 +101,21 @@ impl Spiral {
             .methods()
             .iter()
             .map(|&m| {
-                let (p, r) = self.path(m);
-                (m, p, r)
+                let (p, revs) = self.path(m);
+                let pts: Vec<[f64; 2]> = p.xs.iter().map(|x| [x[0], x[1]]).collect();
+                // over every point, not the decimated ones: the axes must hold the whole spiral
+                let lim = pts
+                    .iter()
+                    .map(|p| p[0].abs().max(p[1].abs()))
+                    .fold(1.2, f64::max)
+                    * 1.05;
+                Panel {
+                    method: m,
+                    end: *pts.last().unwrap_or(&[1.0, 0.0]),
+                    line: decimate(&pts, MAX_DRAWN_POINTS),
+                    lim,
+                    revs,
+                }
             })
             .collect();
         self.cache = Some((self.spec.clone(), data));
@@ -130,7 +153,8 @@ impl SlideWidget for Spiral {
         let plot_h = (ui.available_height() - 70.0).max(80.0);
         let side = w.min(plot_h);
         ui.horizontal_top(|ui| {
-            for (m, path, revs) in data {
+            for panel in data {
+                let (m, lim, end) = (&panel.method, panel.lim, panel.end);
                 ui.vertical(|ui| {
                     ui.set_width(w);
                     let color = style::method_color(*m);
@@ -140,13 +164,6 @@ impl SlideWidget for Spiral {
                             [a.cos(), a.sin()]
                         })
                         .collect();
-                    let pts: Vec<[f64; 2]> = path.xs.iter().map(|x| [x[0], x[1]]).collect();
-                    let end = *pts.last().unwrap_or(&[1.0, 0.0]);
-                    let lim = pts
-                        .iter()
-                        .map(|p| p[0].abs().max(p[1].abs()))
-                        .fold(1.2, f64::max)
-                        * 1.05;
                     Plot::new(format!("spiral-{}", m.name()))
                         .width(w)
                         .height(side)
@@ -166,14 +183,15 @@ impl SlideWidget for Spiral {
                                     .style(egui_plot::LineStyle::dashed_loose()),
                             );
                             p.line(
-                                Line::new(m.name(), pts)
+                                Line::new(m.name(), panel.line.clone())
                                     .color(color)
                                     .width(style::PATH_WIDTH),
                             );
                             p.points(Points::new("end", vec![end]).color(color).radius(5.0));
                         });
                     ui.colored_label(color, egui::RichText::new(m.name()).strong());
-                    let radii: Vec<String> = revs.iter().take(4).map(|r| fmt_num(*r)).collect();
+                    let radii: Vec<String> =
+                        panel.revs.iter().take(4).map(|r| fmt_num(*r)).collect();
                     ui.label(format!("r per turn: {}", radii.join(", ")));
                 });
             }

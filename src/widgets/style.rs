@@ -16,6 +16,9 @@ pub const RK4_TYPO: Color32 = Color32::from_rgb(230, 159, 0);
 pub const DOPRI: Color32 = Color32::from_rgb(86, 180, 233);
 pub const FIELD: Color32 = Color32::from_rgb(150, 150, 160);
 pub const DIVERGED: Color32 = Color32::from_rgb(200, 0, 0);
+/// Symplectic Euler (rigid body only): a violet, distinct from the palette's method colours
+/// and readable on light and dark slides.
+pub const SYMPLECTIC_EULER: Color32 = Color32::from_rgb(150, 110, 220);
 
 pub fn method_color(m: MethodId) -> Color32 {
     match m {
@@ -25,6 +28,17 @@ pub fn method_color(m: MethodId) -> Color32 {
         MethodId::Rk4 => RK4,
         MethodId::Rk4Typo => RK4_TYPO,
         MethodId::Exact => EXACT,
+    }
+}
+
+/// The colour of a rigid-body integrator: the same as its tableau's everywhere else.
+pub fn integrator_color(m: crate::rigid::Integrator) -> Color32 {
+    use crate::rigid::Integrator;
+    match m {
+        Integrator::Euler => EULER,
+        Integrator::Midpoint => MIDPOINT,
+        Integrator::Rk4 => RK4,
+        Integrator::SymplecticEuler => SYMPLECTIC_EULER,
     }
 }
 
