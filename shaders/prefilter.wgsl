@@ -3,6 +3,8 @@
 // importance sampling the GGX normal distribution with a Hammersley set and the N = V = R
 // assumption (Karis 2013, "Real Shading in Unreal Engine 4", split-sum approximation).
 
+//!include cube_face.wgsl
+
 struct Params {
     // x roughness, y face, z sample count
     v: vec4f,
@@ -13,36 +15,6 @@ struct Params {
 @group(0) @binding(2) var src_sampler: sampler;
 
 const PI: f32 = 3.14159265;
-
-struct FullscreenOut {
-    @builtin(position) clip: vec4f,
-    @location(0) ndc: vec2f,
-}
-
-@vertex
-fn vs_fullscreen(@builtin(vertex_index) i: u32) -> FullscreenOut {
-    let uv = vec2f(f32((i << 1u) & 2u), f32(i & 2u));
-    let ndc = uv * 2.0 - 1.0;
-    return FullscreenOut(vec4f(ndc, 1.0, 1.0), ndc);
-}
-
-fn face_dir(face: u32, ndc: vec2f) -> vec3f {
-    let u = ndc.x;
-    let v = -ndc.y;
-    var d = vec3f(-u, -v, -1.0); // face 5: -z
-    if (face == 0u) {
-        d = vec3f(1.0, -v, -u);
-    } else if (face == 1u) {
-        d = vec3f(-1.0, -v, u);
-    } else if (face == 2u) {
-        d = vec3f(u, 1.0, v);
-    } else if (face == 3u) {
-        d = vec3f(u, -1.0, -v);
-    } else if (face == 4u) {
-        d = vec3f(u, -v, 1.0);
-    }
-    return normalize(d);
-}
 
 fn radical_inverse(bits_in: u32) -> f32 {
     var bits = bits_in;

@@ -3,6 +3,7 @@
 // a cube map, then drawn as the background by looking the cube map up along each pixel's view
 // ray (environment mapping: Blinn & Newell 1976; cube maps: Greene 1986).
 //!include common.wgsl
+//!include cube_face.wgsl
 
 struct SkyParams {
     zenith: vec4f,
@@ -15,37 +16,6 @@ struct SkyParams {
 
 @group(1) @binding(0) var<uniform> sky: SkyParams;
 
-struct FullscreenOut {
-    @builtin(position) clip: vec4f,
-    @location(0) ndc: vec2f,
-}
-
-// One triangle covering the viewport.
-@vertex
-fn vs_fullscreen(@builtin(vertex_index) i: u32) -> FullscreenOut {
-    let uv = vec2f(f32((i << 1u) & 2u), f32(i & 2u));
-    let ndc = uv * 2.0 - 1.0;
-    return FullscreenOut(vec4f(ndc, 1.0, 1.0), ndc);
-}
-
-// Direction through a cube face texel, WebGPU face order +x −x +y −y +z −z.
-fn face_dir(face: u32, ndc: vec2f) -> vec3f {
-    let u = ndc.x;
-    let v = -ndc.y;
-    var d = vec3f(-u, -v, -1.0); // face 5: -z
-    if (face == 0u) {
-        d = vec3f(1.0, -v, -u);
-    } else if (face == 1u) {
-        d = vec3f(-1.0, -v, u);
-    } else if (face == 2u) {
-        d = vec3f(u, 1.0, v);
-    } else if (face == 3u) {
-        d = vec3f(u, -1.0, -v);
-    } else if (face == 4u) {
-        d = vec3f(u, -v, 1.0);
-    }
-    return normalize(d);
-}
 
 fn sky_radiance(d: vec3f) -> vec3f {
     let up = d.y;
