@@ -111,3 +111,26 @@ fn cache_hits_and_keeps_the_last_good_rendering() {
     let _ = cache.get_slot(&ctx, "s/0", "a + frac(b", MathSyntax::Typst, 40.0, black);
     assert_eq!(cache.renders, renders, "errors are cached too");
 }
+
+/// `\sqrt[n]{x}` (mitex keeps LaTeX's brackets around the index) draws exactly Typst's
+/// `root(n, x)`: the index without brackets.
+#[test]
+fn latex_roots_with_an_index_match_typst_root() {
+    for (latex, typst) in [
+        (r"\sqrt[3]{x}", "root(3, x)"),
+        (r"\sqrt[n]{x+1}", "root(n, x+1)"),
+        (r"\sqrt[n+1]{x}", "root(n+1, x)"),
+        (r"\sqrt{x}", "sqrt(x)"),
+    ] {
+        let l = render_formula(latex, MathSyntax::Latex, 40.0, BLACK).unwrap();
+        let t = render_formula(typst, MathSyntax::Typst, 40.0, BLACK).unwrap();
+        assert_eq!((l.width, l.height), (t.width, t.height), "{latex}");
+        assert!(l.rgba_premultiplied == t.rgba_premultiplied, "{latex}");
+    }
+    // the brackets are not drawn: `[3]` as index would be wider than `3`
+    let bracketed = render_formula("root([3], x)", MathSyntax::Typst, 40.0, BLACK).unwrap();
+    let l = render_formula(r"\sqrt[3]{x}", MathSyntax::Latex, 40.0, BLACK).unwrap();
+    assert!(l.width < bracketed.width);
+    // an empty index is a plain root, not an error
+    assert!(render_formula(r"\sqrt[]{x}", MathSyntax::Latex, 40.0, BLACK).is_ok());
+}

@@ -55,7 +55,11 @@ const LAYOUT_PT: f64 = 10.0;
 
 /// Definitions that the LaTeX converter's output refers to (mitex maps some commands to helper
 /// functions that its own Typst package would define).
-const LATEX_PRELUDE: &str = r#"#let mitexsqrt(..a) = { let p = a.pos(); if p.len() == 1 { math.sqrt(p.at(0)) } else { math.root(p.at(0), p.at(1)) } }
+/// `\sqrt[n]{x}` arrives as `mitexsqrt(\[n \], x)`: the index still carries LaTeX's brackets
+/// (and spaces), which `mitexrootindex` strips so the index reads `n`, not `[n]`.
+const LATEX_PRELUDE: &str = r#"#let mitexisedge(c) = c.func() == [ ].func() or (c.has("text") and (c.text == "[" or c.text == "]"))
+#let mitexrootindex(it) = if it.has("children") { let cs = it.children; while cs.len() > 0 and mitexisedge(cs.first()) { cs = cs.slice(1) }; while cs.len() > 0 and mitexisedge(cs.last()) { cs = cs.slice(0, -1) }; cs.join() } else { it }
+#let mitexsqrt(..a) = { let p = a.pos(); if p.len() == 1 { math.sqrt(p.at(0)) } else { math.root(mitexrootindex(p.at(0)), p.at(1)) } }
 #let mitexmathbf(it) = math.bold(math.upright(it))
 #let mitexdisplay(it) = math.display(it)
 #let mitexcolor(c, it) = text(fill: rgb(c), it)

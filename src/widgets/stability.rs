@@ -84,19 +84,36 @@ fn default_h() -> f64 {
     1.0
 }
 
-const EXTRA_COLORS: [egui::Color32; 3] = [style::HEUN, style::DOPRI, style::RK4_TYPO];
+/// Colours of deck tableaux, in order; the notes' RK4 typo always gets its own
+/// [`style::RK4_TYPO`] (as in every other widget), so it is not in this cycle.
+const EXTRA_COLORS: [egui::Color32; 3] = [style::HEUN, style::DOPRI, style::SYMPLECTIC_EULER];
+
+/// Opacity of one method's stable region: light enough that the contours and the axes stay
+/// readable through it on a dark slide, and overlaps read as deeper.
+const FILL_ALPHA: f32 = 0.22;
+
+/// Whether `t` has the coefficients of the notes' RK4 typo (whatever the deck named it).
+pub fn is_rk4_typo(t: &Tableau) -> bool {
+    let typo = super::methods::rk4_typo();
+    let close = |x: &[f64], y: &[f64]| {
+        x.len() == y.len() && x.iter().zip(y).all(|(a, b)| (a - b).abs() <= 1e-12)
+    };
+    close(&t.b, &typo.b)
+        && close(&t.c, &typo.c)
+        && t.a.len() == typo.a.len()
+        && t.a.iter().zip(&typo.a).all(|(x, y)| close(x, y))
+}
 const RES: usize = 360;
+
+/// Each method's |R| = 1 contour as segments, with its name and colour.
+pub type Contours = Vec<(String, egui::Color32, Vec<[[f64; 2]; 2]>)>;
 
 pub struct Stability {
     pub spec: StabilitySpec,
     initial: StabilitySpec,
     /// The spec's `files`, loaded once: a tableau, or the error naming file and position.
     loaded: Vec<Result<Tableau, String>>,
-    cache: Option<(
-        StabilitySpec,
-        egui::TextureHandle,
-        Vec<(String, egui::Color32, Vec<[[f64; 2]; 2]>)>,
-    )>,
+    cache: Option<(StabilitySpec, egui::TextureHandle, Contours)>,
 }
 
 impl Stability {
@@ -134,25 +151,23 @@ impl Stability {
             })
             .collect();
         let loaded = self.loaded.iter().filter_map(|t| t.as_ref().ok());
-        for (i, t) in self.spec.tableaux.iter().chain(loaded).enumerate() {
-            v.push((
-                t.name.clone(),
-                EXTRA_COLORS[i % EXTRA_COLORS.len()],
-                t.clone(),
-            ));
+        let mut i = 0;
+        for t in self.spec.tableaux.iter().chain(loaded) {
+            let color = if is_rk4_typo(t) {
+                style::RK4_TYPO
+            } else {
+                i += 1;
+                EXTRA_COLORS[(i - 1) % EXTRA_COLORS.len()]
+            };
+            v.push((t.name.clone(), color, t.clone()));
         }
         v
     }
 
-    /// Fill image (translucent colour where each method is stable) and the |R| = 1 contours
+    /// Fill image (each method's colour at FILL_ALPHA where it is stable, composited "over" in
+    /// premultiplied alpha, so it works on light and dark slides alike) and the |R| = 1 contours
     /// by marching squares, both on a RES × RES grid over the view.
-    fn build(
-        &self,
-        ctx: &egui::Context,
-    ) -> (
-        egui::TextureHandle,
-        Vec<(String, egui::Color32, Vec<[[f64; 2]; 2]>)>,
-    ) {
+    pub fn regions(&self) -> (egui::ColorImage, Contours) {
         let (x0, x1, y0, y1) = self.spec.view;
         let at = |i: usize, j: usize| {
             C(
@@ -160,7 +175,8 @@ impl Stability {
                 y1 - (y1 - y0) * j as f64 / (RES - 1) as f64,
             )
         };
-        let mut rgba = vec![[255f32, 255.0, 255.0, 0.0]; RES * RES];
+        // premultiplied (r, g, b, a) in 0..=1
+        let mut rgba = vec![[0f32; 4]; RES * RES];
         let mut contours = Vec::new();
         for (name, color, tab) in self.entries() {
             let vals: Vec<f64> = (0..RES * RES)
@@ -169,12 +185,15 @@ impl Stability {
             for (k, v) in vals.iter().enumerate() {
                 if *v <= 0.0 {
                     let p = &mut rgba[k];
-                    // multiply-blend a light tint, so overlaps read darker
-                    let tint = [color.r() as f32, color.g() as f32, color.b() as f32];
-                    for c in 0..3 {
-                        p[c] *= 0.78 + 0.22 * tint[c] / 255.0;
+                    let src = [
+                        color.r() as f32 / 255.0 * FILL_ALPHA,
+                        color.g() as f32 / 255.0 * FILL_ALPHA,
+                        color.b() as f32 / 255.0 * FILL_ALPHA,
+                        FILL_ALPHA,
+                    ];
+                    for c in 0..4 {
+                        p[c] = src[c] + p[c] * (1.0 - FILL_ALPHA);
                     }
-                    p[3] = 255.0;
                 }
             }
             contours.push((name, color, marching_squares(&vals, |i, j| at(i, j))));
@@ -182,11 +201,8 @@ impl Stability {
         let pixels: Vec<egui::Color32> = rgba
             .iter()
             .map(|p| {
-                if p[3] == 0.0 {
-                    egui::Color32::TRANSPARENT
-                } else {
-                    egui::Color32::from_rgb(p[0] as u8, p[1] as u8, p[2] as u8)
-                }
+                let q = |x: f32| (x * 255.0).round().clamp(0.0, 255.0) as u8;
+                egui::Color32::from_rgba_premultiplied(q(p[0]), q(p[1]), q(p[2]), q(p[3]))
             })
             .collect();
         let image = egui::ColorImage {
@@ -194,6 +210,11 @@ impl Stability {
             source_size: egui::vec2(RES as f32, RES as f32),
             pixels,
         };
+        (image, contours)
+    }
+
+    fn build(&self, ctx: &egui::Context) -> (egui::TextureHandle, Contours) {
+        let (image, contours) = self.regions();
         (
             ctx.load_texture("stability-regions", image, egui::TextureOptions::LINEAR),
             contours,
@@ -372,9 +393,40 @@ mod tests {
         // the typo'd RK4 is a different method: its region on the real axis ends elsewhere
         let typo = &entries[1].2;
         assert_eq!(typo, &Tableau::rk4_typo());
+        assert_eq!(entries[1].1, style::RK4_TYPO, "the typo keeps its colour");
         let lim = |t: &Tableau| stable_h_limit(t, C(-1.0, 0.0), 10.0);
         assert!((lim(typo) - lim(&Tableau::rk4())).abs() > 0.05);
         let err = w.loaded[1].as_ref().unwrap_err();
         assert!(err.contains("nope.ron"), "{err}");
+    }
+
+    #[test]
+    fn regions_are_translucent_method_colours() {
+        let spec = StabilitySpec {
+            methods: vec![MethodId::Euler],
+            tableaux: vec![],
+            files: vec![],
+            view: default_view(),
+            lambda: None,
+            h: 1.0,
+        };
+        let (img, _) = Stability::new(spec).regions();
+        let px = |re: f64, im: f64| {
+            let (x0, x1, y0, y1) = default_view();
+            let i = ((re - x0) / (x1 - x0) * (RES - 1) as f64).round() as usize;
+            let j = ((y1 - im) / (y1 - y0) * (RES - 1) as f64).round() as usize;
+            img.pixels[j * RES + i]
+        };
+        // z = −1 is inside Euler's disc: Euler's colour at FILL_ALPHA; z = 1 is outside: clear
+        let inside = px(-1.0, 0.0);
+        let a = (FILL_ALPHA * 255.0).round() as u8;
+        assert_eq!(inside.a(), a);
+        let e = style::EULER;
+        let pm = |c: u8| (c as f32 * FILL_ALPHA).round() as u8;
+        assert_eq!(
+            (inside.r(), inside.g(), inside.b()),
+            (pm(e.r()), pm(e.g()), pm(e.b()))
+        );
+        assert_eq!(px(1.0, 0.0), egui::Color32::TRANSPARENT);
     }
 }
