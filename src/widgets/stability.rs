@@ -302,6 +302,13 @@ impl SlideWidget for Stability {
             .spec
             .lambda
             .map(|(a, b)| [a * self.spec.h, b * self.spec.h]);
+        // Keep circles round (aspect 1) and show the whole view: widen whichever axis the
+        // plot's shape leaves room for, instead of letting the plot crop the other one.
+        let avail = ui.available_size();
+        let shape = f64::from((avail.x / avail.y.max(1.0)).clamp(0.2, 5.0));
+        let (cx, cy) = ((x0 + x1) / 2.0, (y0 + y1) / 2.0);
+        let half_w = ((x1 - x0) / 2.0).max((y1 - y0) / 2.0 * shape);
+        let half_h = ((y1 - y0) / 2.0).max((x1 - x0) / 2.0 / shape);
         Plot::new("stability")
             .data_aspect(1.0)
             .allow_drag(false)
@@ -309,8 +316,8 @@ impl SlideWidget for Stability {
             .allow_scroll(false)
             .x_axis_label("Re z")
             .y_axis_label("Im z")
-            .default_x_bounds(x0, x1)
-            .default_y_bounds(y0, y1)
+            .default_x_bounds(cx - half_w, cx + half_w)
+            .default_y_bounds(cy - half_h, cy + half_h)
             .show(ui, |p| {
                 p.add(PlotImage::new(
                     "regions",
