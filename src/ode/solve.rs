@@ -151,6 +151,37 @@ fn out_of_bounds(x: &[f64], bound: f64) -> bool {
     x.iter().any(|v| !v.is_finite() || v.abs() > bound)
 }
 
+/// The argument checks both adaptive drivers share: dimension, tolerances, time span, and a
+/// start already out of bounds (reported as divergence at t0, like the fixed-step drivers).
+fn check_adaptive(
+    dim: usize,
+    t0: f64,
+    x0: &[f64],
+    t_end: f64,
+    opts: &Adaptive,
+) -> Result<(), Outcome> {
+    let fail = |reason: String| Err(Outcome::Failed { t: t0, reason });
+    let n = x0.len();
+    if n != dim {
+        return fail(format!("initial state has {n} values, the system {dim}"));
+    }
+    let (rtol, atol) = (opts.rtol, opts.atol);
+    if !(rtol >= 0.0 && atol >= 0.0 && rtol + atol > 0.0 && rtol.is_finite() && atol.is_finite()) {
+        return fail(format!(
+            "tolerances rtol = {rtol}, atol = {atol} must be finite, ≥ 0 and not both 0"
+        ));
+    }
+    if !(t0.is_finite() && t_end.is_finite() && t_end >= t0) {
+        return fail(format!(
+            "need finite t0 ≤ t_end, got t0 = {t0}, t_end = {t_end}"
+        ));
+    }
+    if out_of_bounds(x0, opts.bound) {
+        return Err(Outcome::Diverged { t: t0 });
+    }
+    Ok(())
+}
+
 /// Checks that a symplectic method gets a second-order system: even dimension and q' = v.
 fn check_second_order<S: System + ?Sized>(sys: &S, t0: f64, x0: &[f64]) -> Result<(), String> {
     let n = x0.len();
@@ -368,37 +399,8 @@ pub fn solve_adaptive<S: System + ?Sized>(
         sol.outcome = Outcome::Failed { t, reason };
         sol
     };
-    if n != sys.dim() {
-        return fail(
-            sol,
-            t0,
-            format!("initial state has {n} values, the system {}", sys.dim()),
-        );
-    }
-    if !(opts.rtol >= 0.0
-        && opts.atol >= 0.0
-        && opts.rtol + opts.atol > 0.0
-        && opts.rtol.is_finite()
-        && opts.atol.is_finite())
-    {
-        return fail(
-            sol,
-            t0,
-            format!(
-                "tolerances rtol = {}, atol = {} must be finite, ≥ 0 and not both 0",
-                opts.rtol, opts.atol
-            ),
-        );
-    }
-    if !(t0.is_finite() && t_end.is_finite() && t_end >= t0) {
-        return fail(
-            sol,
-            t0,
-            format!("need finite t0 ≤ t_end, got t0 = {t0}, t_end = {t_end}"),
-        );
-    }
-    if out_of_bounds(x0, opts.bound) {
-        sol.outcome = Outcome::Diverged { t: t0 };
+    if let Err(outcome) = check_adaptive(sys.dim(), t0, x0, t_end, &opts) {
+        sol.outcome = outcome;
         return sol;
     }
     let counted = Counted::new(sys);
@@ -469,32 +471,8 @@ pub fn solve_implicit_adaptive<S: System + ?Sized>(
     if !method.is_implicit() {
         return fail(sol, t0, format!("{method} is not an implicit method"));
     }
-    if n != sys.dim() {
-        return fail(
-            sol,
-            t0,
-            format!("initial state has {n} values, the system {}", sys.dim()),
-        );
-    }
-    if !(opts.rtol >= 0.0 && opts.atol >= 0.0 && opts.rtol + opts.atol > 0.0) {
-        return fail(
-            sol,
-            t0,
-            format!(
-                "tolerances rtol = {}, atol = {} must be ≥ 0 and not both 0",
-                opts.rtol, opts.atol
-            ),
-        );
-    }
-    if !(t0.is_finite() && t_end.is_finite() && t_end >= t0) {
-        return fail(
-            sol,
-            t0,
-            format!("need finite t0 ≤ t_end, got t0 = {t0}, t_end = {t_end}"),
-        );
-    }
-    if out_of_bounds(x0, opts.bound) {
-        sol.outcome = Outcome::Diverged { t: t0 };
+    if let Err(outcome) = check_adaptive(sys.dim(), t0, x0, t_end, &opts) {
+        sol.outcome = outcome;
         return sol;
     }
     let counted = Counted::new(sys);
