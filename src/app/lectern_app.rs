@@ -411,6 +411,8 @@ impl LecternApp {
             .get_or_insert_with(|| SceneView::new(&rs, &path).map_err(|e| format!("{e:#}")));
         match scene {
             Ok(view) => {
+                // The panel belongs to the presenter window, or to `C`: no button for the audience.
+                view.controls_button = false;
                 if self.show_controls {
                     egui::Panel::right("lectern-scene-controls")
                         .resizable(true)
