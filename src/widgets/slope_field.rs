@@ -256,32 +256,18 @@ impl SlideWidget for SlopeField {
         style::projector_text(ui);
         let ink = style::ink(ui);
         let k = style::keys(ui);
-        if k.h_up {
-            self.spec.h *= style::H_KEY_FACTOR;
-        }
-        if k.h_down {
-            self.spec.h /= style::H_KEY_FACTOR;
-        }
-        self.spec.h = self.spec.h.clamp(H_RANGE.0, H_RANGE.1);
+        k.step_h(&mut self.spec.h, H_RANGE);
         ui.horizontal(|ui| {
-            ui.add(
-                egui::Slider::new(&mut self.spec.h, H_RANGE.0..=H_RANGE.1)
-                    .logarithmic(true)
-                    .text("h"),
+            style::h_slider(ui, &mut self.spec.h, H_RANGE);
+            style::method_toggles(
+                ui,
+                [
+                    (&mut self.spec.euler, MethodId::Euler),
+                    (&mut self.spec.midpoint, MethodId::Midpoint),
+                    (&mut self.spec.rk4, MethodId::Rk4),
+                    (&mut self.spec.exact, MethodId::Exact),
+                ],
             );
-            for (on, m) in [
-                (&mut self.spec.euler, MethodId::Euler),
-                (&mut self.spec.midpoint, MethodId::Midpoint),
-                (&mut self.spec.rk4, MethodId::Rk4),
-                (&mut self.spec.exact, MethodId::Exact),
-            ] {
-                ui.checkbox(
-                    on,
-                    egui::RichText::new(m.name())
-                        .color(style::method_color(m))
-                        .strong(),
-                );
-            }
         });
         self.update();
         self.update_marks();

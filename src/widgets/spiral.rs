@@ -127,19 +127,9 @@ impl SlideWidget for Spiral {
         style::projector_text(ui);
         let ink = style::ink(ui);
         let k = style::keys(ui);
-        if k.h_up {
-            self.spec.h *= style::H_KEY_FACTOR;
-        }
-        if k.h_down {
-            self.spec.h /= style::H_KEY_FACTOR;
-        }
-        self.spec.h = self.spec.h.clamp(H_RANGE.0, H_RANGE.1);
+        k.step_h(&mut self.spec.h, H_RANGE);
         ui.horizontal(|ui| {
-            ui.add(
-                egui::Slider::new(&mut self.spec.h, H_RANGE.0..=H_RANGE.1)
-                    .logarithmic(true)
-                    .text("h"),
-            );
+            style::h_slider(ui, &mut self.spec.h, H_RANGE);
             ui.label(format!(
                 "Euler grows r by √(1+h²) = {:.4} per step",
                 (1.0 + self.spec.h.powi(2)).sqrt()

@@ -162,13 +162,7 @@ impl SlideWidget for StepConstruction {
         if k.back {
             self.spec.stage = self.spec.stage.saturating_sub(1);
         }
-        if k.h_up {
-            self.spec.h *= style::H_KEY_FACTOR;
-        }
-        if k.h_down {
-            self.spec.h /= style::H_KEY_FACTOR;
-        }
-        self.spec.h = self.spec.h.clamp(H_RANGE.0, H_RANGE.1);
+        k.step_h(&mut self.spec.h, H_RANGE);
         self.spec.stage = self.spec.stage.min(n);
         ui.horizontal_wrapped(|ui| {
             for c in [MethodId::Euler, MethodId::Midpoint, MethodId::Rk4] {

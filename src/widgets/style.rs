@@ -95,6 +95,43 @@ pub fn keys(ui: &egui::Ui) -> Keys {
 /// One key press scales h by this factor (four presses double it).
 pub const H_KEY_FACTOR: f64 = 1.189_207_115_002_721; // 2^(1/4)
 
+impl Keys {
+    /// Applies `-`/`+` to a step size (a quarter octave each) and clamps it to `range`.
+    pub fn step_h(&self, h: &mut f64, range: (f64, f64)) {
+        if self.h_up {
+            *h *= H_KEY_FACTOR;
+        }
+        if self.h_down {
+            *h /= H_KEY_FACTOR;
+        }
+        *h = h.clamp(range.0, range.1);
+    }
+}
+
+/// The logarithmic step-size slider of the path widgets.
+pub fn h_slider(ui: &mut egui::Ui, h: &mut f64, range: (f64, f64)) {
+    ui.add(
+        egui::Slider::new(h, range.0..=range.1)
+            .logarithmic(true)
+            .text("h"),
+    );
+}
+
+/// One checkbox per method, labelled in that method's colour.
+pub fn method_toggles<'a>(
+    ui: &mut egui::Ui,
+    toggles: impl IntoIterator<Item = (&'a mut bool, MethodId)>,
+) {
+    for (on, m) in toggles {
+        ui.checkbox(
+            on,
+            egui::RichText::new(m.name())
+                .color(method_color(m))
+                .strong(),
+        );
+    }
+}
+
 /// A readable number for labels: 3 significant digits, scientific outside 1e-3..1e4.
 pub fn fmt_num(x: f64) -> String {
     if !x.is_finite() {
