@@ -312,3 +312,111 @@ fn school_params_read_from_ron_with_defaults() {
     assert_eq!(p.max_accel, 3.0);
     assert_eq!(p.seed, SchoolParams::default().seed);
 }
+
+/// The boids rule written plainly over all pairs: the reference for the vectorised pass.
+fn brute_force_steering(s: &School, env: &Environment, i: usize) -> Vec3 {
+    let p = s.params();
+    let (pos, vel) = (s.position(i), s.velocity(i));
+    let (mut count, mut v_sum, mut d_sum, mut sep) = (0.0f32, Vec3::ZERO, Vec3::ZERO, Vec3::ZERO);
+    for j in (0..s.len()).filter(|&j| j != i) {
+        let d = s.position(j) - pos;
+        let d2 = d.length_squared();
+        if d2 > 0.0 && d2 < p.neighbour_radius * p.neighbour_radius {
+            count += 1.0;
+            v_sum += s.velocity(j);
+            d_sum += d;
+        }
+        if d2 > 0.0 && d2 < p.separation_radius * p.separation_radius {
+            sep -= d / d2;
+        }
+    }
+    let mut a = sep * p.separation_weight;
+    if count > 0.0 {
+        a += (v_sum / count - vel) * p.alignment_weight + d_sum / count * p.cohesion_weight;
+    }
+    let (lo, hi) = env.swim_box();
+    let m = p.bounds_margin;
+    let into_lo = ((lo + Vec3::splat(m) - pos) / m).max(Vec3::ZERO);
+    let into_hi = ((pos - (hi - Vec3::splat(m))) / m).max(Vec3::ZERO);
+    a += (into_lo - into_hi) * p.bounds_weight * p.max_speed;
+    if let Some(f) = env.flee_point {
+        let d = pos - f;
+        if d.length() < p.flee_radius {
+            a += d.normalize() * p.flee_weight * p.max_speed * (1.0 - d.length() / p.flee_radius);
+        }
+    }
+    a.clamp_length_max(p.max_accel)
+}
+
+#[test]
+fn vectorised_steering_equals_the_brute_force_boids_rule() {
+    let mut env = Environment::new(tank());
+    env.flee_point = Some(Vec3::new(1.0, -2.0, 0.5));
+    // dense enough that runs are longer than one SIMD chunk, with a few close pairs
+    let params = SchoolParams {
+        count: 1500,
+        separation_radius: 0.5,
+        max_accel: 1e3,
+        ..Default::default()
+    };
+    let mut s = School::new(&params, &env);
+    s.step(1.0 / 60.0, &env);
+    s.rebuild_grid(&env);
+    s.compute_steering(&env);
+    let mut worst = 0.0f32;
+    for i in 0..s.len() {
+        let want = brute_force_steering(&s, &env, i);
+        let got = s.acceleration(i);
+        let err = (got - want).length() / want.length().max(1.0);
+        worst = worst.max(err);
+    }
+    // f32 sums in another order: agreement to rounding, not bit for bit
+    assert!(worst < 1e-4, "worst relative difference {worst:e}");
+}
+
+#[test]
+fn integration_keeps_the_heading_on_the_velocity_and_the_frame_unit() {
+    let env = Environment::new(tank());
+    let mut s = School::new(
+        &SchoolParams {
+            count: 777, // not a multiple of any SIMD width
+            ..Default::default()
+        },
+        &env,
+    );
+    for _ in 0..60 {
+        s.step(1.0 / 60.0, &env);
+    }
+    let p = s.params().clone();
+    for f in s.instances().zip(0..s.len()) {
+        let (inst, i) = f;
+        let v = s.velocity(i);
+        let heading = inst.orientation * FISH_FORWARD;
+        assert!(
+            heading.dot(v.normalize()) > 1.0 - 1e-5,
+            "fish {i}: {heading} vs {v}"
+        );
+        assert!((inst.orientation.length() - 1.0).abs() < 1e-6);
+        assert!(v.length() >= p.min_speed * 0.9999 && v.length() <= p.max_speed * 1.0001);
+    }
+}
+
+#[test]
+fn a_reversed_heading_turns_half_way_round_the_fish_own_up_axis() {
+    let q = upright_frame(Vec3::new(1.0, 0.2, -0.3));
+    let (f, up) = (q * FISH_FORWARD, q * FISH_UP);
+    let r = transport(q, -f);
+    assert!(
+        (r * FISH_FORWARD + f).length() < 1e-5,
+        "{}",
+        r * FISH_FORWARD
+    );
+    assert!(
+        (r * FISH_UP - up).length() < 1e-5,
+        "the back flipped: {}",
+        r * FISH_UP
+    );
+    // a NaN heading does not poison the frame
+    let bad = transport(q, Vec3::NAN);
+    assert!(bad.is_finite() && (bad.length() - 1.0).abs() < 1e-6);
+}

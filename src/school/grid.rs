@@ -85,6 +85,7 @@ impl NeighbourGrid {
         self.dims
     }
 
+    #[inline]
     pub fn cell_coords(&self, p: Vec3) -> [usize; 3] {
         let c = (p - self.origin) * self.inv_cell;
         // `as` saturates (NaN → 0); then clamp into the grid
@@ -96,8 +97,22 @@ impl NeighbourGrid {
         ]
     }
 
+    #[inline]
     pub fn cell_index(&self, c: [usize; 3]) -> usize {
         c[0] + self.dims[0] * (c[1] + self.dims[1] * c[2])
+    }
+
+    /// The (up to) 9 non-empty runs of sorted slots `lo..hi` covering the 3×3×3 cells around
+    /// cell `c`, as an array (no closure, so SIMD callers keep their target features).
+    #[inline]
+    pub fn runs(&self, c: [usize; 3]) -> ([(u32, u32); 9], usize) {
+        let mut runs = [(0, 0); 9];
+        let mut k = 0;
+        self.for_each_run(c, |lo, hi| {
+            runs[k] = (lo as u32, hi as u32);
+            k += 1;
+        });
+        (runs, k)
     }
 
     /// Calls `f(lo, hi)` for the 9 runs of sorted slots `lo..hi` covering the 3×3×3 cells

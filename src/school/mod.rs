@@ -8,8 +8,12 @@
 //! tail phase).
 
 pub mod grid;
+mod integrate;
 pub mod rng;
+mod simd;
 mod steer;
+
+pub use integrate::transport;
 
 use crate::waves::WaveSum;
 use glam::{Mat3, Quat, Vec3};
@@ -163,7 +167,11 @@ pub struct School {
     vx: Vec<f32>,
     vy: Vec<f32>,
     vz: Vec<f32>,
-    orientation: Vec<Quat>,
+    /// world_from_fish orientation, unit quaternion (x, y, z, w)
+    qx: Vec<f32>,
+    qy: Vec<f32>,
+    qz: Vec<f32>,
+    qw: Vec<f32>,
     phase: Vec<f32>,
     /// stable identity: fish `id` always spawns the same way and is the one removed first
     /// when the count drops (largest ids go first)
@@ -172,8 +180,8 @@ pub struct School {
     ay: Vec<f32>,
     az: Vec<f32>,
     grid: NeighbourGrid,
+    padded: steer::Padded,
     scratch_f: Vec<f32>,
-    scratch_q: Vec<Quat>,
     scratch_u: Vec<u32>,
     time_secs: f64,
 }
@@ -217,18 +225,9 @@ impl School {
     }
 
     fn clear(&mut self) {
-        for v in [
-            &mut self.px,
-            &mut self.py,
-            &mut self.pz,
-            &mut self.vx,
-            &mut self.vy,
-        ] {
+        for v in self.per_fish_f32() {
             v.clear();
         }
-        self.vz.clear();
-        self.orientation.clear();
-        self.phase.clear();
         self.id.clear();
     }
 
@@ -236,18 +235,9 @@ impl School {
         let n = self.len();
         if count < n {
             let keep: Vec<bool> = self.id.iter().map(|&id| (id as usize) < count).collect();
-            for v in [
-                &mut self.px,
-                &mut self.py,
-                &mut self.pz,
-                &mut self.vx,
-                &mut self.vy,
-                &mut self.vz,
-                &mut self.phase,
-            ] {
+            for v in self.per_fish_f32() {
                 retain_by(v, &keep);
             }
-            retain_by(&mut self.orientation, &keep);
             retain_by(&mut self.id, &keep);
             return;
         }
@@ -276,7 +266,11 @@ impl School {
             self.vx.push(vel.x);
             self.vy.push(vel.y);
             self.vz.push(vel.z);
-            self.orientation.push(upright_frame(dir));
+            let q = upright_frame(dir);
+            self.qx.push(q.x);
+            self.qy.push(q.y);
+            self.qz.push(q.z);
+            self.qw.push(q.w);
             self.phase.push(g.range(0.0, std::f32::consts::TAU));
             self.id.push(id as u32);
         }
@@ -301,34 +295,24 @@ impl School {
             .params
             .neighbour_radius
             .max(self.params.separation_radius);
-        self.grid
-            .build(&self.px, &self.py, &self.pz, &env.bounds, r);
-        let order = self.grid.order();
+        let mut grid = std::mem::take(&mut self.grid);
+        grid.build(&self.px, &self.py, &self.pz, &env.bounds, r);
+        let order = grid.order();
         let n = order.len();
-        self.scratch_f.resize(n, 0.0);
-        for v in [
-            &mut self.px,
-            &mut self.py,
-            &mut self.pz,
-            &mut self.vx,
-            &mut self.vy,
-            &mut self.vz,
-            &mut self.phase,
-        ] {
-            for (dst, &i) in self.scratch_f.iter_mut().zip(order) {
+        let mut scratch = std::mem::take(&mut self.scratch_f);
+        scratch.resize(n, 0.0);
+        for v in self.per_fish_f32() {
+            for (dst, &i) in scratch.iter_mut().zip(order) {
                 *dst = v[i as usize];
             }
-            std::mem::swap(v, &mut self.scratch_f);
+            std::mem::swap(v, &mut scratch);
         }
-        self.scratch_q.resize(n, Quat::IDENTITY);
-        for (dst, &i) in self.scratch_q.iter_mut().zip(order) {
-            *dst = self.orientation[i as usize];
-        }
-        std::mem::swap(&mut self.orientation, &mut self.scratch_q);
+        self.scratch_f = scratch;
         self.scratch_u.resize(n, 0);
         for (dst, &i) in self.scratch_u.iter_mut().zip(order) {
             *dst = self.id[i as usize];
         }
+        self.grid = grid;
         std::mem::swap(&mut self.id, &mut self.scratch_u);
     }
 
@@ -339,14 +323,31 @@ impl School {
 
     /// Pass 3: velocity, position, parallel-transported orientation and tail phase.
     pub fn integrate(&mut self, dt: f32, env: &Environment) {
-        steer::integrate(self, dt, env);
+        integrate::integrate(self, dt, env);
+    }
+
+    /// Every per-fish f32 array (all but the ids), for the passes that treat them alike.
+    fn per_fish_f32(&mut self) -> [&mut Vec<f32>; 11] {
+        [
+            &mut self.px,
+            &mut self.py,
+            &mut self.pz,
+            &mut self.vx,
+            &mut self.vy,
+            &mut self.vz,
+            &mut self.qx,
+            &mut self.qy,
+            &mut self.qz,
+            &mut self.qw,
+            &mut self.phase,
+        ]
     }
 
     /// One fish's render data.
     pub fn instance(&self, i: usize) -> FishInstance {
         FishInstance {
             position: Vec3::new(self.px[i], self.py[i], self.pz[i]),
-            orientation: self.orientation[i],
+            orientation: Quat::from_xyzw(self.qx[i], self.qy[i], self.qz[i], self.qw[i]),
             scale: self.params.fish_scale * size_variation(self.params.seed, self.id[i]),
             tail_phase: self.phase[i],
         }
@@ -368,6 +369,15 @@ impl School {
 
     pub fn velocity(&self, i: usize) -> Vec3 {
         Vec3::new(self.vx[i], self.vy[i], self.vz[i])
+    }
+
+    /// The steering acceleration of fish `i` from the last [`School::compute_steering`]
+    /// (zero before the first).
+    pub fn acceleration(&self, i: usize) -> Vec3 {
+        match (self.ax.get(i), self.ay.get(i), self.az.get(i)) {
+            (Some(&x), Some(&y), Some(&z)) => Vec3::new(x, y, z),
+            _ => Vec3::ZERO,
+        }
     }
 
     pub fn id(&self, i: usize) -> u32 {
@@ -401,12 +411,4 @@ pub fn upright_frame(dir: Vec3) -> Quat {
     let up = side.cross(f);
     // columns: images of (forward = x, up = y, x × y = z)
     Quat::from_mat3(&Mat3::from_cols(f, up, f.cross(up))).normalize()
-}
-
-/// One parallel-transport step: rotate `q` by the smallest rotation taking its heading to
-/// `new_heading` (unit), then renormalise (ERRATA 5). No Frenet frame: no flips on straight runs.
-#[inline]
-pub fn transport(q: Quat, new_heading: Vec3) -> Quat {
-    let old = q * FISH_FORWARD;
-    (Quat::from_rotation_arc(old.normalize(), new_heading) * q).normalize()
 }
