@@ -199,37 +199,61 @@ impl BodyBatch {
         }
         let t = self.time;
         let chunks = self.states.iter_mut().zip(&self.consts).enumerate();
-        // one loop per method, so each is its own straight-line chunk kernel
+        // one loop per method, each over a straight-line chunk kernel; plain loops, no
+        // closures, so everything inlines into (and is compiled with) the caller's features
         match self.integrator {
-            Integrator::Euler => chunks.for_each(|(i, (s, c))| {
-                let k1 = rhs(c, forces, 4 * i, t + 0.0 * h, s);
-                accumulate::<F>(s, h * 1.0, &k1);
-                finish(s);
-            }),
-            Integrator::Midpoint => chunks.for_each(|(i, (s, c))| {
-                let k1 = rhs(c, forces, 4 * i, t + 0.0 * h, s);
-                let k2 = rhs(c, forces, 4 * i, t + 0.5 * h, &stage::<F>(s, h * 0.5, &k1));
-                accumulate::<F>(s, h * 1.0, &k2);
-                finish(s);
-            }),
-            Integrator::Rk4 => chunks.for_each(|(i, (s, c))| {
-                let k1 = rhs(c, forces, 4 * i, t + 0.0 * h, s);
-                let k2 = rhs(c, forces, 4 * i, t + 0.5 * h, &stage::<F>(s, h * 0.5, &k1));
-                let k3 = rhs(c, forces, 4 * i, t + 0.5 * h, &stage::<F>(s, h * 0.5, &k2));
-                let k4 = rhs(c, forces, 4 * i, t + 1.0 * h, &stage::<F>(s, h * 1.0, &k3));
-                accumulate::<F>(s, h * (1.0 / 6.0), &k1);
-                accumulate::<F>(s, h * (1.0 / 3.0), &k2);
-                accumulate::<F>(s, h * (1.0 / 3.0), &k3);
-                accumulate::<F>(s, h * (1.0 / 6.0), &k4);
-                finish(s);
-            }),
-            Integrator::SymplecticEuler => chunks.for_each(|(i, (s, c))| {
-                symplectic_euler(c, forces, 4 * i, t, s, h);
-                finish(s);
-            }),
+            Integrator::Euler => {
+                for (i, (s, c)) in chunks {
+                    euler(c, forces, 4 * i, t, s, h);
+                }
+            }
+            Integrator::Midpoint => {
+                for (i, (s, c)) in chunks {
+                    midpoint(c, forces, 4 * i, t, s, h);
+                }
+            }
+            Integrator::Rk4 => {
+                for (i, (s, c)) in chunks {
+                    rk4(c, forces, 4 * i, t, s, h);
+                }
+            }
+            Integrator::SymplecticEuler => {
+                for (i, (s, c)) in chunks {
+                    symplectic_euler(c, forces, 4 * i, t, s, h);
+                    finish(s);
+                }
+            }
         }
         self.time += h;
     }
+}
+
+#[inline(always)]
+fn euler<F: BatchForces>(c: &Consts4, forces: &F, first: usize, t: f64, s: &mut State4, h: f64) {
+    let k1 = rhs(c, forces, first, t + 0.0 * h, s);
+    accumulate::<F>(s, h * 1.0, &k1);
+    finish(s);
+}
+
+#[inline(always)]
+fn midpoint<F: BatchForces>(c: &Consts4, forces: &F, first: usize, t: f64, s: &mut State4, h: f64) {
+    let k1 = rhs(c, forces, first, t + 0.0 * h, s);
+    let k2 = rhs(c, forces, first, t + 0.5 * h, &stage::<F>(s, h * 0.5, &k1));
+    accumulate::<F>(s, h * 1.0, &k2);
+    finish(s);
+}
+
+#[inline(always)]
+fn rk4<F: BatchForces>(c: &Consts4, forces: &F, first: usize, t: f64, s: &mut State4, h: f64) {
+    let k1 = rhs(c, forces, first, t + 0.0 * h, s);
+    let k2 = rhs(c, forces, first, t + 0.5 * h, &stage::<F>(s, h * 0.5, &k1));
+    let k3 = rhs(c, forces, first, t + 0.5 * h, &stage::<F>(s, h * 0.5, &k2));
+    let k4 = rhs(c, forces, first, t + 1.0 * h, &stage::<F>(s, h * 1.0, &k3));
+    accumulate::<F>(s, h * (1.0 / 6.0), &k1);
+    accumulate::<F>(s, h * (1.0 / 3.0), &k2);
+    accumulate::<F>(s, h * (1.0 / 3.0), &k3);
+    accumulate::<F>(s, h * (1.0 / 6.0), &k4);
+    finish(s);
 }
 
 /// How many leading components a stage changes: x and q only when the wrench is zero.
@@ -270,7 +294,11 @@ fn rhs<F: BatchForces>(c: &Consts4, forces: &F, first: usize, t: f64, s: &State4
     ];
     let l = [s[10], s[11], s[12]];
     // body-axes momentum (times |q|²): Mᵀ L
-    let a: [F4; 3] = std::array::from_fn(|k| m[0][k] * l[0] + m[1][k] * l[1] + m[2][k] * l[2]);
+    let a = [
+        m[0][0] * l[0] + m[1][0] * l[1] + m[2][0] * l[2],
+        m[0][1] * l[0] + m[1][1] * l[1] + m[2][1] * l[2],
+        m[0][2] * l[0] + m[1][2] * l[1] + m[2][2] * l[2],
+    ];
     let ii = &c.inv_i;
     let b = [
         ii[0] * a[0] + ii[3] * a[1] + ii[5] * a[2],
@@ -280,8 +308,11 @@ fn rhs<F: BatchForces>(c: &Consts4, forces: &F, first: usize, t: f64, s: &State4
     let inv_n2 = F4::splat(1.0) / (xx + yy + zz + ww);
     let half_scale = F4::splat(0.5) * inv_n2 * inv_n2;
     // ½ ω
-    let w: [F4; 3] =
-        std::array::from_fn(|r| (m[r][0] * b[0] + m[r][1] * b[1] + m[r][2] * b[2]) * half_scale);
+    let w = [
+        (m[0][0] * b[0] + m[0][1] * b[1] + m[0][2] * b[2]) * half_scale,
+        (m[1][0] * b[0] + m[1][1] * b[1] + m[1][2] * b[2]) * half_scale,
+        (m[2][0] * b[0] + m[2][1] * b[1] + m[2][2] * b[2]) * half_scale,
+    ];
     let mut d = [F4::ZERO; 13];
     for i in 0..3 {
         d[i] = s[7 + i] * c.inv_mass;
@@ -328,6 +359,13 @@ fn symplectic_euler<F: BatchForces>(
     s[3..7].copy_from_slice(&q);
 }
 
+#[inline(always)]
+fn and_assign(a: &mut [u64; 4], b: [u64; 4]) {
+    for j in 0..4 {
+        a[j] &= b[j];
+    }
+}
+
 /// Renormalise q; a lane that blew up (non-finite q, x or P) is reset to rest at the origin
 /// if x is lost, else where it is: `RigidBody::step`'s rule, by bit-select.
 #[inline(always)]
@@ -335,17 +373,15 @@ fn finish(s: &mut State4) {
     let n2 = s[3] * s[3] + s[4] * s[4] + s[5] * s[5] + s[6] * s[6];
     let inv = F4::splat(1.0) / n2.sqrt();
     let mut x_ok = [u64::MAX; 4];
-    for i in 0..3 {
-        let m = s[i].finite_mask();
-        x_ok = std::array::from_fn(|j| x_ok[j] & m[j]);
+    for v in &s[0..3] {
+        and_assign(&mut x_ok, v.finite_mask());
+    }
+    for v in &mut s[3..7] {
+        *v = *v * inv;
     }
     let mut ok = x_ok;
-    for i in 3..10 {
-        if i < 7 {
-            s[i] = s[i] * inv;
-        }
-        let m = s[i].finite_mask();
-        ok = std::array::from_fn(|j| ok[j] & m[j]);
+    for v in &s[3..10] {
+        and_assign(&mut ok, v.finite_mask());
     }
     for i in 0..3 {
         s[i] = s[i].select(x_ok, F4::ZERO);

@@ -37,39 +37,28 @@ impl Real for f64 {
 #[repr(C, align(32))]
 pub struct F4(pub [f64; 4]);
 
+// No closures below: a closure is compiled without the caller's `#[target_feature]`s, and
+// one LLVM declines to inline would drop the AVX2 build back to SSE2.
 impl F4 {
     pub const ZERO: F4 = F4([0.0; 4]);
-
-    #[inline(always)]
-    pub fn map(self, f: impl Fn(f64) -> f64) -> F4 {
-        F4([f(self.0[0]), f(self.0[1]), f(self.0[2]), f(self.0[3])])
-    }
-
-    #[inline(always)]
-    fn zip(self, o: F4, f: impl Fn(f64, f64) -> f64) -> F4 {
-        F4([
-            f(self.0[0], o.0[0]),
-            f(self.0[1], o.0[1]),
-            f(self.0[2], o.0[2]),
-            f(self.0[3], o.0[3]),
-        ])
-    }
 
     /// All-ones bits in the lanes where `v` is finite, zero elsewhere.
     #[inline(always)]
     pub fn finite_mask(self) -> [u64; 4] {
-        self.0.map(|v| (v.is_finite() as u64).wrapping_neg())
+        let a = self.0;
+        [m(a[0]), m(a[1]), m(a[2]), m(a[3])]
     }
 
     /// `if mask { self } else { other }` per lane, by bits: no branch.
     #[inline(always)]
     pub fn select(self, mask: [u64; 4], other: F4) -> F4 {
-        let mut out = [0.0; 4];
-        for j in 0..4 {
-            out[j] =
-                f64::from_bits((self.0[j].to_bits() & mask[j]) | (other.0[j].to_bits() & !mask[j]));
-        }
-        F4(out)
+        let (a, b) = (self.0, other.0);
+        F4([
+            pick(a[0], b[0], mask[0]),
+            pick(a[1], b[1], mask[1]),
+            pick(a[2], b[2], mask[2]),
+            pick(a[3], b[3], mask[3]),
+        ])
     }
 }
 
@@ -80,8 +69,21 @@ impl Real for F4 {
     }
     #[inline(always)]
     fn sqrt(self) -> Self {
-        self.map(f64::sqrt)
+        let a = self.0;
+        F4([a[0].sqrt(), a[1].sqrt(), a[2].sqrt(), a[3].sqrt()])
     }
+}
+
+/// All-ones bits if `v` is finite, else zero.
+#[inline(always)]
+fn m(v: f64) -> u64 {
+    (v.is_finite() as u64).wrapping_neg()
+}
+
+/// `x` where `m` is all ones, `y` where it is zero.
+#[inline(always)]
+fn pick(x: f64, y: f64, m: u64) -> f64 {
+    f64::from_bits((x.to_bits() & m) | (y.to_bits() & !m))
 }
 
 macro_rules! lane_op {
@@ -90,7 +92,8 @@ macro_rules! lane_op {
             type Output = F4;
             #[inline(always)]
             fn $f(self, o: F4) -> F4 {
-                self.zip(o, |a, b| a $op b)
+                let (a, b) = (self.0, o.0);
+                F4([a[0] $op b[0], a[1] $op b[1], a[2] $op b[2], a[3] $op b[3]])
             }
         }
     };
@@ -104,7 +107,8 @@ impl Neg for F4 {
     type Output = F4;
     #[inline(always)]
     fn neg(self) -> F4 {
-        self.map(|a| -a)
+        let a = self.0;
+        F4([-a[0], -a[1], -a[2], -a[3]])
     }
 }
 
