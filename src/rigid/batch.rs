@@ -77,6 +77,7 @@ impl Consts4 {
     }
 }
 
+#[inline(always)]
 fn padding_state() -> State4 {
     let mut s = [F4::ZERO; 13];
     s[6] = F4::splat(1.0);
@@ -115,7 +116,7 @@ impl BodyBatch {
 
     /// Appends a body (constants from [`BodyConstants::new`]).
     pub fn push(&mut self, c: &BodyConstants, state: RigidState) {
-        if self.len % 4 == 0 {
+        if self.len.is_multiple_of(4) {
             self.states.push(padding_state());
             self.consts.push(Consts4::padding());
         }
@@ -383,12 +384,12 @@ fn finish(s: &mut State4) {
     for v in &s[3..10] {
         and_assign(&mut ok, v.finite_mask());
     }
-    for i in 0..3 {
-        s[i] = s[i].select(x_ok, F4::ZERO);
+    for v in &mut s[0..3] {
+        *v = v.select(x_ok, F4::ZERO);
     }
-    for i in 3..13 {
-        let rest = if i == 6 { F4::splat(1.0) } else { F4::ZERO };
-        s[i] = s[i].select(ok, rest);
+    let rest = padding_state();
+    for (v, r) in s[3..13].iter_mut().zip(&rest[3..13]) {
+        *v = v.select(ok, *r);
     }
 }
 
