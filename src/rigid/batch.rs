@@ -367,6 +367,7 @@ fn and_assign(a: &mut [u64; 4], b: [u64; 4]) {
     }
 }
 
+#[allow(clippy::needless_range_loop)]
 /// Renormalise q; a lane that blew up (non-finite q, x or P) is reset to rest at the origin
 /// if x is lost, else where it is: `RigidBody::step`'s rule, by bit-select.
 #[inline(always)]
@@ -374,22 +375,23 @@ fn finish(s: &mut State4) {
     let n2 = s[3] * s[3] + s[4] * s[4] + s[5] * s[5] + s[6] * s[6];
     let inv = F4::splat(1.0) / n2.sqrt();
     let mut x_ok = [u64::MAX; 4];
-    for v in &s[0..3] {
-        and_assign(&mut x_ok, v.finite_mask());
+    for i in 0..3 {
+        and_assign(&mut x_ok, s[i].finite_mask());
     }
-    for v in &mut s[3..7] {
-        *v = *v * inv;
+    for i in 3..7 {
+        s[i] = s[i] * inv;
     }
     let mut ok = x_ok;
-    for v in &s[3..10] {
-        and_assign(&mut ok, v.finite_mask());
+    for i in 3..10 {
+        and_assign(&mut ok, s[i].finite_mask());
     }
-    for v in &mut s[0..3] {
-        *v = v.select(x_ok, F4::ZERO);
+    // index loops over constant ranges: fully unrolled, nothing left to inline
+    for i in 0..3 {
+        s[i] = s[i].select(x_ok, F4::ZERO);
     }
-    let rest = padding_state();
-    for (v, r) in s[3..13].iter_mut().zip(&rest[3..13]) {
-        *v = v.select(ok, *r);
+    for i in 3..13 {
+        let rest = if i == 6 { F4::splat(1.0) } else { F4::ZERO };
+        s[i] = s[i].select(ok, rest);
     }
 }
 
