@@ -1,9 +1,12 @@
 //! One rigid body: the 13-number state `X = (x, q, P, L)` and its derivative
 //! `Ẋ = (P/M, ½ ω q, F, τ)` with `ω = R I_body⁻¹ Rᵀ L` (ERRATA 2 and 4), integrated by an
-//! explicit Runge–Kutta tableau from [`crate::ode`] or by symplectic Euler.
+//! explicit Runge–Kutta method over a fixed-size `[f64; 13]` ([`super::step`]) or by symplectic
+//! Euler with the symplectic free-rotation splitting ([`super::free_rotation`]).
 
 use super::mass::MassProperties;
-use crate::ode::{ExplicitRk, System, Tableau};
+use super::principal::principal_axes;
+use super::step;
+use crate::ode::{System, Tableau};
 use glam::{DMat3, DQuat, DVec3};
 use serde::{Deserialize, Serialize};
 
@@ -74,9 +77,39 @@ pub struct BodyConstants {
     /// about the centre of mass, body axes
     pub inertia_body: DMat3,
     pub inv_inertia_body: DMat3,
+    /// body_from_principal: the principal axes of `inertia_body` (moments ascending)
+    pub principal: DQuat,
+    /// 1 / I_k for the principal moments I₁ ≤ I₂ ≤ I₃
+    pub inv_principal_moments: DVec3,
 }
 
 impl BodyConstants {
+    /// Constants for mass `mass` and body inertia `inertia_body` (about the centre of mass).
+    /// A non-positive or non-finite mass becomes 1; a singular inertia (a point or a rod) is
+    /// regularised so ω stays finite. The principal axes are found once, here.
+    pub fn new(mass: f64, inertia_body: DMat3) -> Self {
+        let mass = if mass.is_finite() && mass > 0.0 {
+            mass
+        } else {
+            1.0
+        };
+        let det = inertia_body.determinant();
+        let inertia_body = if det.is_finite() && det.abs() > 1e-300 {
+            inertia_body
+        } else {
+            DMat3::IDENTITY * mass.max(1e-12) * 1e-6
+        };
+        let axes = principal_axes(inertia_body);
+        Self {
+            mass,
+            inv_mass: 1.0 / mass,
+            inertia_body,
+            inv_inertia_body: inertia_body.inverse(),
+            principal: axes.rotation(),
+            inv_principal_moments: 1.0 / axes.moments,
+        }
+    }
+
     /// Angular velocity ω = R I_body⁻¹ Rᵀ L (rad/s, world). `q` need not be exactly unit.
     pub fn omega(&self, q: DQuat, l: DVec3) -> DVec3 {
         let r = DMat3::from_quat(q.normalize());
@@ -113,11 +146,18 @@ impl<F: Fn(&BodyConstants, &RigidState, f64) -> Wrench> Forces for F {
 /// The integrators a body can be stepped with; switchable between steps.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
 pub enum Integrator {
+    /// Forward Euler on the 13 numbers (first order; a free body's energy grows).
     Euler,
+    /// The midpoint method (ERRATA 3), second order.
     Midpoint,
+    /// Classical RK4 (ERRATA 1), fourth order.
     #[default]
     Rk4,
-    /// P, L first with the old state's wrench, then x, q with the new momenta.
+    /// Kick P, L with the old state's wrench, drift x with the new P, then rotate by the
+    /// symplectic splitting of the free rigid body ([`super::free_rotation`]: exact
+    /// sub-rotations about the principal axes, composed symmetrically). L and |L| are kept
+    /// exactly in free flight, the energy error stays bounded (no drift) and the free rotation
+    /// is second order; with forces the kick–drift makes the whole step first order.
     SymplecticEuler,
 }
 
@@ -138,7 +178,9 @@ impl Integrator {
         }
     }
 
-    fn tableau(self) -> Option<Tableau> {
+    /// The Butcher tableau of an explicit Runge–Kutta method (`RigidBody::step` runs the same
+    /// arithmetic over fixed-size arrays; this is its reference).
+    pub fn tableau(self) -> Option<Tableau> {
         match self {
             Integrator::Euler => Some(Tableau::euler()),
             Integrator::Midpoint => Some(Tableau::midpoint()),
@@ -160,16 +202,8 @@ impl<F: Forces + ?Sized> System for BodySystem<'_, F> {
     }
 
     fn rhs(&self, t: f64, x: &[f64], dxdt: &mut [f64]) {
-        let s = RigidState::from_slice(x);
-        let v = self.body.velocity(s.p);
-        let w = self.body.omega(s.q, s.l);
-        // ½ ω q: the quaternion product of the pure quaternion (0, ω) with q
-        let q_dot = DQuat::from_xyzw(w.x, w.y, w.z, 0.0) * s.q * 0.5;
-        let wrench = self.forces.wrench(self.body, &s, t);
-        dxdt[0..3].copy_from_slice(&v.to_array());
-        dxdt[3..7].copy_from_slice(&q_dot.to_array());
-        dxdt[7..10].copy_from_slice(&wrench.force.to_array());
-        dxdt[10..13].copy_from_slice(&wrench.torque.to_array());
+        let x: &[f64; 13] = x.try_into().expect("13 numbers");
+        dxdt.copy_from_slice(&step::derivative(self.body, self.forces, t, x));
     }
 }
 
@@ -192,37 +226,17 @@ pub struct RigidBody {
     /// seconds
     pub time: f64,
     pub integrator: Integrator,
-    stepper: Option<(Integrator, ExplicitRk)>,
-    scratch: [f64; 13],
 }
 
 impl RigidBody {
     /// A body with the given mass and body-space inertia about its centre of mass, at rest.
     /// A singular inertia (a point or a rod) is regularised so ω stays finite.
     pub fn new(mass: f64, inertia_body: DMat3, state: RigidState) -> Self {
-        let mass = if mass.is_finite() && mass > 0.0 {
-            mass
-        } else {
-            1.0
-        };
-        let det = inertia_body.determinant();
-        let inertia_body = if det.is_finite() && det.abs() > 1e-300 {
-            inertia_body
-        } else {
-            DMat3::IDENTITY * mass.max(1e-12) * 1e-6
-        };
         Self {
-            constants: BodyConstants {
-                mass,
-                inv_mass: 1.0 / mass,
-                inertia_body,
-                inv_inertia_body: inertia_body.inverse(),
-            },
+            constants: BodyConstants::new(mass, inertia_body),
             state,
             time: 0.0,
             integrator: Integrator::default(),
-            stepper: None,
-            scratch: [0.0; 13],
         }
     }
 
@@ -259,30 +273,12 @@ impl RigidBody {
         let h = dt_secs;
         match self.integrator {
             Integrator::SymplecticEuler => {
-                let c = &self.constants;
-                let s = &mut self.state;
-                let wr = forces.wrench(c, s, self.time);
-                s.p += h * wr.force;
-                s.l += h * wr.torque;
-                s.x += h * c.velocity(s.p);
-                let w = c.omega(s.q, s.l);
-                // the exact rotation by ω h keeps q unit up to rounding
-                s.q = DQuat::from_scaled_axis(w * h) * s.q;
+                step::symplectic_euler(&self.constants, forces, self.time, &mut self.state, h)
             }
             method => {
-                let rebuild = !matches!(&self.stepper, Some((m, _)) if *m == method);
-                if rebuild {
-                    let tab = method.tableau().expect("explicit method");
-                    self.stepper = Some((method, ExplicitRk::new(tab, RigidState::DIM)));
-                }
-                let (_, rk) = self.stepper.as_mut().expect("stepper built above");
-                self.scratch = self.state.to_array();
-                let sys = BodySystem {
-                    body: &self.constants,
-                    forces,
-                };
-                rk.step(&sys, self.time, &mut self.scratch, h);
-                self.state = RigidState::from_slice(&self.scratch);
+                let mut x = self.state.to_array();
+                step::explicit_rk(method, &self.constants, forces, self.time, &mut x, h);
+                self.state = RigidState::from_slice(&x);
             }
         }
         let q = self.state.q.normalize();

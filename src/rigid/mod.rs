@@ -4,11 +4,17 @@
 //! State is f64 throughout: the energy and quaternion-norm tests need 1e-9 accuracy. The
 //! renderer reads `RigidBody::pose()` as f32.
 
+pub mod batch;
 pub mod body;
 pub mod forces;
+pub mod free_rotation;
+pub mod lanes;
 pub mod mass;
 pub mod mesh;
+pub mod principal;
+pub mod step;
 
+pub use batch::{BatchForces, BodyBatch, FreeBodies};
 pub use body::{
     BodyConstants, BodySystem, Forces, Integrator, NoForces, RigidBody, RigidState, Wrench,
     quat_euler_update,
@@ -16,3 +22,4 @@ pub use body::{
 pub use forces::{BuoyancySamples, Gravity, WaterForces};
 pub use mass::{MassProperties, mirtich, point_lattice};
 pub use mesh::TriMesh;
+pub use principal::{PrincipalAxes, principal_axes};
