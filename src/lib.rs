@@ -6,6 +6,9 @@
 //! egui or wgpu, so they are usable and testable with no window.
 
 pub mod diag;
+pub mod image_file;
+pub mod paths;
+pub mod ron_tree;
 
 // numerics and simulation: no GPU or UI types below this line
 pub mod ode;
