@@ -13,21 +13,13 @@ use lectern::deck::DeckSession;
 
 const SIZE: [f32; 2] = [960.0, 540.0];
 
-/// A copy of the bundled lecture in a temporary folder (tests may break it).
-fn lecture_copy() -> (tempfile::TempDir, PathBuf) {
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("lecture.ron");
-    std::fs::copy(
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("slides/lecture.ron"),
-        &path,
-    )
-    .unwrap();
-    (dir, path)
-}
+mod common;
+use common::lecture_copy;
 
 /// A small deck that stays fixed (the bundled lecture changes), for snapshots: a title slide,
 /// bullets with inline markup, maths, and a live plot.
-const FIXTURE: &str = r#"(
+const FIXTURE: &str = concat!(
+    r#"(
     title: "Fixture deck",
     slides: [
         (id: "t", title: "Integrating motion", layout: Title,
@@ -36,9 +28,13 @@ const FIXTURE: &str = r#"(
             Bullets(["Euler: follow the slope", "Midpoint: look *half a step* ahead", "RK4: four slopes, `h^4` error"]),
             Math(src: "x(t + h) = x(t) + h dot(x)(t)"),
         ]),
-        (id: "p", title: "A live plot", body: [Widget(Spiral((h: 0.2, turns: 2.0)))]),
+        (id: "p", title: "A live plot", body: [Widget(Spiral(("#,
+    r#"ode: Inline((vars: ["x", "y"], rhs: ["-y", "x"], initial: [1.0, 0.0], "#,
+    r#"exact: Some(["x*cos(t - t0) - y*sin(t - t0)", "x*sin(t - t0) + y*cos(t - t0)"]))), "#,
+    r#"h: 0.2, turns: 2.0)))]),
     ],
-)"#;
+)"#
+);
 
 fn fixture() -> (tempfile::TempDir, PathBuf) {
     let dir = tempfile::tempdir().unwrap();

@@ -12,11 +12,14 @@ use lectern::deck::{Deck, DeckSession, load_deck, parse_deck};
 use lectern::reload::Reloaded;
 use lectern::widgets::ParamSnapshot;
 
+mod common;
+
 const H: &str = "h";
 
 fn deck_text(h: &str, turns: &str, extra_title: &str) -> String {
     format!(
-        "// spiral deck\n(\n    title: \"t\",\n    slides: [\n        (id: \"intro\", title: \"Intro{extra_title}\", seconds: 60),\n        (\n            id: \"spiral\",\n            title: \"Spiral\",\n            body: [Widget(Spiral((h: {h}, turns: {turns}, compare: true)))], // keep\n            notes: \"Drag h.\",\n            seconds: 90,\n        ),\n    ],\n    bookmarks: [(key: 1, slide: \"spiral\", label: \"big h\", set: [(\"h\", 0.8)])],\n)\n"
+        "// spiral deck\n(\n    title: \"t\",\n    slides: [\n        (id: \"intro\", title: \"Intro{extra_title}\", seconds: 60),\n        (\n            id: \"spiral\",\n            title: \"Spiral\",\n            body: [Widget(Spiral(({circle}, h: {h}, turns: {turns}, compare: true)))], // keep\n            notes: \"Drag h.\",\n            seconds: 90,\n        ),\n    ],\n    bookmarks: [(key: 1, slide: \"spiral\", label: \"big h\", set: [(\"h\", 0.8)])],\n)\n",
+        circle = common::CIRCLE
     )
 }
 
@@ -144,10 +147,7 @@ fn write_back_changes_only_the_tweaked_bytes_and_failure_leaves_the_original() {
 
 #[test]
 fn write_back_into_the_bundled_lecture_keeps_every_other_byte() {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("slides/lecture.ron");
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("lecture.ron");
-    std::fs::copy(&src, &path).unwrap();
+    let (_dir, path) = common::lecture_copy();
     let original = std::fs::read_to_string(&path).unwrap();
     let deck = load_deck(&path).unwrap();
     let i = deck

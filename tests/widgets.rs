@@ -18,10 +18,22 @@ fn options() -> SnapshotOptions {
     SnapshotOptions::new().threshold(0.6).max_failed_pixels(8)
 }
 
-/// A widget from a RON spec, as a deck file would write it.
+/// The bundled deck: widget specs name their problem and tableau files relative to it.
+fn deck_path() -> &'static std::path::Path {
+    std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/slides/lecture.ron"))
+}
+
+/// A widget spec from RON, as a deck file would write it (`Option` fields without `Some`).
+fn spec_of(ron_spec: &str) -> WidgetSpec {
+    ron::Options::default()
+        .with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME)
+        .from_str(ron_spec)
+        .unwrap_or_else(|e| panic!("{ron_spec}: {e}"))
+}
+
+/// A widget from a RON spec, its files resolved as in the bundled deck.
 fn widget(ron_spec: &str) -> Box<dyn SlideWidget> {
-    let spec: WidgetSpec = ron::from_str(ron_spec).unwrap_or_else(|e| panic!("{ron_spec}: {e}"));
-    spec.instantiate()
+    spec_of(ron_spec).instantiate_in(Some(deck_path()))
 }
 
 fn harness(mut w: Box<dyn SlideWidget>) -> Harness<'static> {
@@ -55,7 +67,7 @@ fn check(results: &mut SnapshotResults, name: &str, ron_spec: &str) {
     results.add(h.try_snapshot_options(name, &options()));
 }
 
-const SLOPE_1D: &str = "SlopeField((field: OneD(Forced), start: (0.0, 1.5), h: 0.5, t_end: 8.0, view: (0.0, 8.0, -1.5, 2.0)))";
+const SLOPE_1D: &str = "SlopeField((ode: File(\"problems/forced.ron\"), start: (0.0, 1.5), h: 0.5, t_end: 8.0, view: (0.0, 8.0, -1.5, 2.0)))";
 
 #[test]
 fn slope_field_states() {
@@ -64,17 +76,17 @@ fn slope_field_states() {
     check(
         &mut r,
         "widget-slope-field-1d-h1-rk4-only",
-        "SlopeField((field: OneD(Forced), start: (1.0, -1.0), h: 1.0, t_end: 8.0, view: (0.0, 8.0, -1.5, 2.0), euler: false, midpoint: false))",
+        "SlopeField((ode: File(\"problems/forced.ron\"), start: (1.0, -1.0), h: 1.0, t_end: 8.0, view: (0.0, 8.0, -1.5, 2.0), methods: [Rk4]))",
     );
     check(
         &mut r,
         "widget-slope-field-phase-circle",
-        "SlopeField((field: Phase(Circle), start: (1.0, 0.0), h: 0.3, t_end: 6.2832, view: (-2.0, 2.0, -2.0, 2.0)))",
+        "SlopeField((ode: File(\"problems/circle.ron\"), start: (1.0, 0.0), h: 0.3, t_end: 6.2832, view: (-2.0, 2.0, -2.0, 2.0)))",
     );
     check(
         &mut r,
         "widget-slope-field-phase-vdp",
-        "SlopeField((field: Phase(VanDerPol(mu: 1.0)), start: (0.5, 0.0), h: 0.2, t_end: 12.0, view: (-3.0, 3.0, -3.0, 3.0), grid: 17))",
+        "SlopeField((ode: File(\"problems/limit-cycle.ron\"), start: (0.5, 0.0), h: 0.2, t_end: 12.0, view: (-3.0, 3.0, -3.0, 3.0), grid: 17))",
     );
     r.unwrap();
 }
@@ -85,22 +97,22 @@ fn step_construction_states() {
     check(
         &mut r,
         "widget-step-euler",
-        "StepConstruction((method: Euler, h: 1.5, stage: 2))",
+        "StepConstruction((ode: File(\"problems/forced.ron\"), method: Euler, h: 1.5, stage: 2))",
     );
     check(
         &mut r,
         "widget-step-midpoint-half",
-        "StepConstruction((method: Midpoint, h: 1.5, stage: 2))",
+        "StepConstruction((ode: File(\"problems/forced.ron\"), method: Midpoint, h: 1.5, stage: 2))",
     );
     check(
         &mut r,
         "widget-step-rk4-k2",
-        "StepConstruction((method: Rk4, h: 1.5, stage: 2))",
+        "StepConstruction((ode: File(\"problems/forced.ron\"), method: Rk4, h: 1.5, stage: 2))",
     );
     check(
         &mut r,
         "widget-step-rk4-full",
-        "StepConstruction((method: Rk4, h: 1.5, stage: 5))",
+        "StepConstruction((ode: File(\"problems/forced.ron\"), method: Rk4, h: 1.5, stage: 5))",
     );
     r.unwrap();
 }
@@ -108,11 +120,15 @@ fn step_construction_states() {
 #[test]
 fn spiral_states() {
     let mut r = SnapshotResults::new();
-    check(&mut r, "widget-spiral-h0.1", "Spiral((h: 0.1, turns: 3.0))");
+    check(
+        &mut r,
+        "widget-spiral-h0.1",
+        "Spiral((ode: File(\"problems/circle.ron\"), h: 0.1, turns: 3.0))",
+    );
     check(
         &mut r,
         "widget-spiral-h0.5-euler-only",
-        "Spiral((h: 0.5, turns: 2.0, compare: false))",
+        "Spiral((ode: File(\"problems/circle.ron\"), h: 0.5, turns: 2.0, compare: false))",
     );
     r.unwrap();
 }
@@ -123,23 +139,23 @@ fn neptune_states() {
     check(
         &mut r,
         "widget-neptune-stable",
-        "Neptune((problem: Decay(lambda: -5.0), h: 0.3, t_end: 4.0, rk4: true))",
+        "Neptune((ode: File(\"problems/decay.ron\"), h: 0.3, t_end: 4.0, methods: [Euler, Rk4]))",
     );
     check(
         &mut r,
         "widget-neptune-diverged",
-        "Neptune((problem: Decay(lambda: -5.0), h: 0.45, t_end: 4.0, rk4: true))",
+        "Neptune((ode: File(\"problems/decay.ron\"), h: 0.45, t_end: 4.0, methods: [Euler, Rk4]))",
     );
     check(
         &mut r,
         "widget-neptune-oscillator",
-        "Neptune((problem: Oscillator, h: 0.5, t_end: 20.0, midpoint: true, rk4: true))",
+        "Neptune((ode: File(\"problems/circle.ron\"), h: 0.5, t_end: 20.0, methods: [Euler, Midpoint, Rk4]))",
     );
     // h = 1e9 is clamped, never a panic or NaN
     check(
         &mut r,
         "widget-neptune-huge-h",
-        "Neptune((problem: Decay(lambda: -5.0), h: 1e9, t_end: 4.0))",
+        "Neptune((ode: File(\"problems/decay.ron\"), h: 1e9, t_end: 4.0))",
     );
     r.unwrap();
 }
@@ -166,12 +182,12 @@ fn convergence_states() {
     check(
         &mut r,
         "widget-convergence",
-        "Convergence((field: Forced, levels: 8))",
+        "Convergence((ode: File(\"problems/forced.ron\"), levels: 8))",
     );
     check(
         &mut r,
         "widget-convergence-typo",
-        "Convergence((field: Forced, levels: 8, typo: true))",
+        "Convergence((ode: File(\"problems/forced.ron\"), levels: 8, methods: [Euler, Midpoint, Rk4, Tableau(\"tableaux/rk4-typo.ron\")]))",
     );
     r.unwrap();
 }
@@ -182,7 +198,7 @@ fn work_precision_states() {
     check(
         &mut r,
         "widget-work-precision",
-        "WorkPrecision((t_end: 10.0, levels: 10, rk5: true))",
+        "WorkPrecision((ode: File(\"problems/circle.ron\"), t_end: 10.0, levels: 10, rk5: true))",
     );
     r.unwrap();
 }
@@ -251,11 +267,7 @@ fn a_different_h_does_not_match_its_snapshot() {
 /// them.
 #[test]
 fn params_round_trip_through_reload_and_reset() {
-    let deck = parse_deck(
-        include_str!("../slides/lecture.ron"),
-        std::path::Path::new("lecture.ron"),
-    )
-    .unwrap();
+    let deck = parse_deck(include_str!("../slides/lecture.ron"), deck_path()).unwrap();
     let specs: Vec<WidgetSpec> = deck
         .slides
         .iter()
@@ -276,8 +288,8 @@ fn params_round_trip_through_reload_and_reset() {
     let kinds: std::collections::BTreeSet<_> = specs.iter().map(|s| s.kind()).collect();
     assert_eq!(kinds.len(), 9, "the deck shows all nine widgets: {kinds:?}");
     for spec in specs {
-        let mut w = spec.instantiate();
-        let ids: Vec<&str> = w.params().iter().map(|p| p.id).collect();
+        let mut w = spec.instantiate_in(Some(deck_path()));
+        let ids: Vec<String> = w.params().iter().map(|p| p.id.clone()).collect();
         assert!(!ids.is_empty(), "{} has no params", spec.kind());
         let mut uniq = ids.clone();
         uniq.dedup();
@@ -294,13 +306,15 @@ fn params_round_trip_through_reload_and_reset() {
         }
         let saved = params::snapshot(w.as_mut());
         let tweaked_spec = w.spec();
+        // as the widget starts: the file's values with the defaults it filled in
+        let fresh = spec.instantiate_in(Some(deck_path())).spec();
         assert_ne!(
             tweaked_spec,
-            spec,
+            fresh,
             "{}: tweaks must reach spec()",
             spec.kind()
         );
-        let mut reloaded = spec.instantiate();
+        let mut reloaded = spec.instantiate_in(Some(deck_path()));
         params::restore(reloaded.as_mut(), &saved);
         assert_eq!(reloaded.spec(), tweaked_spec, "{}", spec.kind());
         // and written back to RON, it parses to the same spec
@@ -310,7 +324,13 @@ fn params_round_trip_through_reload_and_reset() {
             tweaked_spec
         );
         reloaded.reset();
-        assert_eq!(reloaded.spec(), spec, "{}: reset", spec.kind());
+        assert_eq!(reloaded.spec(), fresh, "{}: reset", spec.kind());
+        assert_eq!(
+            params::snapshot(reloaded.as_mut()),
+            params::snapshot(spec.instantiate_in(Some(deck_path())).as_mut()),
+            "{}: reset",
+            spec.kind()
+        );
     }
 }
 
@@ -325,17 +345,17 @@ fn frame_cost_while_dragging_h() {
     let cases = [
         (
             "slope field, 20 000 steps",
-            "SlopeField((field: OneD(Forced), start: (0.0, 1.5), h: 0.01, t_end: 200.0, view: (0.0, 200.0, -1.5, 2.0)))",
+            "SlopeField((ode: File(\"problems/forced.ron\"), start: (0.0, 1.5), h: 0.01, t_end: 200.0, view: (0.0, 200.0, -1.5, 2.0)))",
             0.01,
         ),
         (
             "slope field phase (VdP), 6 000 steps",
-            "SlopeField((field: Phase(VanDerPol(mu: 1.0)), start: (0.5, 0.0), h: 0.01, t_end: 60.0, view: (-3.0, 3.0, -3.0, 3.0)))",
+            "SlopeField((ode: File(\"problems/limit-cycle.ron\"), start: (0.5, 0.0), h: 0.01, t_end: 60.0, view: (-3.0, 3.0, -3.0, 3.0)))",
             0.01,
         ),
         (
             "spiral, 3 × 20 000 steps",
-            "Spiral((h: 0.005, turns: 20.0))",
+            "Spiral((ode: File(\"problems/circle.ron\"), h: 0.005, turns: 20.0))",
             0.005,
         ),
     ];

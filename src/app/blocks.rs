@@ -18,6 +18,8 @@ pub(crate) struct BlockCtx<'a> {
     pub slide_key: &'a str,
     /// The deck's folder; image paths are relative to it.
     pub base_dir: Option<&'a Path>,
+    /// The deck file: widgets resolve their problem and tableau files against it.
+    pub deck_path: Option<&'a Path>,
 }
 
 /// The style widgets see inside a slide: egui's dark or light visuals recoloured to the
@@ -214,7 +216,7 @@ fn block_ui(
                     .layout(egui::Layout::top_down(Align::Min)),
             );
             child.set_clip_rect(rect.intersect(ui.clip_rect()));
-            state.widget(path, spec, bctx.base_dir).ui(&mut child);
+            state.widget(path, spec, bctx.deck_path).ui(&mut child);
         }
         Block::Columns(cols) => {
             let n = cols.len().max(1) as f32;

@@ -19,9 +19,9 @@ pub struct SlideState {
     /// Problems found while drawing (a formula that does not typeset), from the last frame:
     /// for the presenter's screen, never the audience's.
     problems: Vec<String>,
-    /// The deck's folder, remembered from the last draw: widgets made before the slide is
-    /// drawn (bookmarks, restores) resolve their files (e.g. tableaux) against it too.
-    base_dir: Option<std::path::PathBuf>,
+    /// The deck file, remembered from the last draw: widgets made before the slide is drawn
+    /// (bookmarks, restores) resolve their files (problems, tableaux) against it too.
+    deck_path: Option<std::path::PathBuf>,
 }
 
 pub(crate) struct WidgetSlot {
@@ -36,15 +36,15 @@ impl SlideState {
         &mut self,
         path: &[usize],
         spec: &WidgetSpec,
-        base_dir: Option<&std::path::Path>,
+        deck_path: Option<&std::path::Path>,
     ) -> &mut dyn SlideWidget {
         let slot = self
             .widgets
             .entry(path.to_vec())
             .and_modify(|slot| {
                 if slot.spec != *spec {
-                    let mut widget = spec.instantiate_in(base_dir);
-                    carry_tweaks(&slot.spec, slot.widget.as_mut(), widget.as_mut());
+                    let mut widget = spec.instantiate_in(deck_path);
+                    carry_tweaks(&slot.spec, slot.widget.as_mut(), widget.as_mut(), deck_path);
                     *slot = WidgetSlot {
                         spec: spec.clone(),
                         widget,
@@ -53,9 +53,50 @@ impl SlideState {
             })
             .or_insert_with(|| WidgetSlot {
                 spec: spec.clone(),
-                widget: spec.instantiate_in(base_dir),
+                widget: spec.instantiate_in(deck_path),
             });
         slot.widget.as_mut()
+    }
+
+    /// After problem files changed on disk: widgets whose equation comes from one of `changed`
+    /// are made again (their tweaks carried over; a broken file keeps the last good equation).
+    pub fn reload_problem_files(&mut self, changed: &[std::path::PathBuf]) {
+        let deck_path = self.deck_path.clone();
+        for slot in self.widgets.values_mut() {
+            let uses = slot
+                .widget
+                .ode()
+                .and_then(|o| o.file().map(std::path::Path::to_path_buf))
+                .is_some_and(|f| changed.iter().any(|c| same_file(c, &f)));
+            if uses {
+                let mut widget = slot.spec.instantiate_in(deck_path.as_deref());
+                carry_tweaks(
+                    &slot.spec,
+                    slot.widget.as_mut(),
+                    widget.as_mut(),
+                    deck_path.as_deref(),
+                );
+                slot.widget = widget;
+            }
+        }
+    }
+
+    /// The live equations of the slide's widgets, by block path (the presenter's editor).
+    pub fn odes(&mut self) -> Vec<(Vec<usize>, &'static str, &mut crate::widgets::LiveOde)> {
+        let mut slots: Vec<(&Vec<usize>, &mut WidgetSlot)> = self.widgets.iter_mut().collect();
+        slots.sort_by(|a, b| a.0.cmp(b.0));
+        slots
+            .into_iter()
+            .filter_map(|(path, slot)| {
+                let kind = slot.spec.kind();
+                slot.widget.ode().map(|o| (path.clone(), kind, o))
+            })
+            .collect()
+    }
+
+    /// The widget at block path `path`, if it was made.
+    pub fn widget_at(&mut self, path: &[usize]) -> Option<&mut dyn SlideWidget> {
+        Some(self.widgets.get_mut(path)?.widget.as_mut())
     }
 
     pub(crate) fn note_problem(&mut self, problem: String) {
@@ -69,9 +110,10 @@ impl SlideState {
         &self.problems
     }
 
-    /// Where the deck's files are (for widgets made before the slide is first drawn).
-    pub fn set_base_dir(&mut self, dir: Option<&std::path::Path>) {
-        self.base_dir = dir.map(std::path::Path::to_path_buf);
+    /// The deck file whose folder the widgets' files are in (for widgets made before the
+    /// slide is first drawn).
+    pub fn set_deck_path(&mut self, deck: Option<&std::path::Path>) {
+        self.deck_path = deck.map(std::path::Path::to_path_buf);
     }
 
     /// Makes every widget of `slide` (so tweaks can be set before it is first drawn).
@@ -81,8 +123,8 @@ impl SlideState {
                 path.push(i);
                 match b {
                     Block::Widget(spec) => {
-                        let dir = state.base_dir.clone();
-                        state.widget(path, spec, dir.as_deref());
+                        let deck = state.deck_path.clone();
+                        state.widget(path, spec, deck.as_deref());
                     }
                     Block::Columns(cols) => {
                         for (c, col) in cols.iter().enumerate() {
@@ -149,12 +191,23 @@ impl SlideState {
         }
     }
 
+    /// Where write-back writes parameter `id` of the widget at `path`.
+    pub fn write_target(&mut self, path: &[usize], id: &str) -> Option<crate::widgets::WriteTo> {
+        let slot = self.widgets.get_mut(path)?;
+        slot.widget
+            .params()
+            .into_iter()
+            .find(|p| p.id == id)
+            .map(|p| p.write)
+    }
+
     /// The values that differ from the file's, by widget path: what write-back writes.
     pub fn tweaked(&mut self) -> Vec<(Vec<usize>, String, ParamSnapshot)> {
         let mut out = Vec::new();
+        let deck = self.deck_path.clone();
         for (path, slot) in &mut self.widgets {
             let file: Vec<(String, ParamSnapshot)> =
-                params::snapshot(slot.spec.instantiate().as_mut());
+                params::snapshot(slot.spec.instantiate_in(deck.as_deref()).as_mut());
             for (id, v) in params::snapshot(slot.widget.as_mut()) {
                 if file.iter().any(|(fid, fv)| *fid == id && *fv != v) {
                     out.push((path.clone(), id, v));
@@ -193,9 +246,18 @@ impl SlideState {
 pub type TweakSnapshot = Vec<(Vec<usize>, Vec<(String, ParamSnapshot)>)>;
 
 /// After a reload changed a widget's spec: the new widget takes the live values the lecturer
-/// tweaked, except where the file changed that very value (then the file wins).
-fn carry_tweaks(old_spec: &WidgetSpec, live: &mut dyn SlideWidget, new: &mut dyn SlideWidget) {
-    let old_file = params::snapshot(old_spec.instantiate().as_mut());
+/// tweaked, except where the file changed that very value (then the file wins). Its equation
+/// keeps what was typed live the same way, and the last good equation if the new one is broken.
+fn carry_tweaks(
+    old_spec: &WidgetSpec,
+    live: &mut dyn SlideWidget,
+    new: &mut dyn SlideWidget,
+    deck_path: Option<&std::path::Path>,
+) {
+    if let (Some(old), Some(fresh)) = (live.ode(), new.ode()) {
+        fresh.carry_from(old);
+    }
+    let old_file = params::snapshot(old_spec.instantiate_in(deck_path).as_mut());
     let new_file = params::snapshot(new);
     let keep: Vec<(String, ParamSnapshot)> = params::snapshot(live)
         .into_iter()
@@ -325,11 +387,12 @@ pub fn slide_ui_with(
     content.set_style(blocks::widget_style(ui.style(), &look, deck.theme));
     content.set_clip_rect(canvas.intersect(ui.clip_rect()));
     state.problems.clear();
-    state.base_dir.clone_from(&deck.base_dir);
+    state.deck_path.clone_from(&deck.path);
     let bctx = BlockCtx {
         look,
         slide_key: slide.key(),
         base_dir: deck.base_dir.as_deref(),
+        deck_path: deck.path.as_deref(),
     };
     match slide.layout {
         Layout::Content => content_slide_ui(&mut content, slide, &bctx, state),
@@ -428,4 +491,14 @@ pub fn fitted_size(avail: Vec2, ratio: f32) -> Vec2 {
     fit_canvas(Rect::from_min_size(egui::Pos2::ZERO, avail), ratio)
         .0
         .size()
+}
+
+/// Whether two paths name the same file (the watcher reports absolute paths, the deck relative
+/// ones).
+fn same_file(a: &std::path::Path, b: &std::path::Path) -> bool {
+    a == b
+        || match (a.canonicalize(), b.canonicalize()) {
+            (Ok(x), Ok(y)) => x == y,
+            _ => false,
+        }
 }

@@ -1,12 +1,12 @@
 //! Live tweaks beyond one frame: bookmarks (`Ctrl+1…9` store, `1…9` recall, or declared in the
 //! deck) and write-back of the current values into the deck file as its new defaults.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use super::slide_view::{SlideState, TweakSnapshot};
-use crate::deck::write_back::{ValueEdit, apply_edits, write_atomic};
-use crate::deck::{Block, BookmarkDecl, Slide};
-use crate::widgets::ParamSnapshot;
+use crate::deck::write_back::{NewValue, ValueEdit, apply_at, apply_edits, write_atomic};
+use crate::deck::{BookmarkDecl, Slide};
+use crate::widgets::{ParamSnapshot, WriteTo};
 
 /// Stored tweak states, one per digit key.
 #[derive(Debug, Default, Clone)]
@@ -50,69 +50,111 @@ pub fn apply_declared(decl: &BookmarkDecl, slide: &Slide, state: &mut SlideState
 
 /// Paths of the widget blocks of `slide`, in file order.
 pub fn widget_paths(slide: &Slide) -> Vec<Vec<usize>> {
-    fn walk(blocks: &[Block], path: &mut Vec<usize>, out: &mut Vec<Vec<usize>>) {
-        for (i, b) in blocks.iter().enumerate() {
-            path.push(i);
-            match b {
-                Block::Widget(_) => out.push(path.clone()),
-                Block::Columns(cols) => {
-                    for (c, col) in cols.iter().enumerate() {
-                        path.push(c);
-                        walk(col, path, out);
-                        path.pop();
-                    }
-                }
-                _ => {}
-            }
-            path.pop();
-        }
-    }
-    let mut out = Vec::new();
-    walk(&slide.body, &mut Vec::new(), &mut out);
-    out
+    slide.widgets().into_iter().map(|(p, _)| p).collect()
 }
 
-/// The edits that write `state`'s tweaked values of `slide` into the deck file.
-pub fn edits_for(slide: &Slide, state: &mut SlideState) -> Result<Vec<ValueEdit>, String> {
+/// Where each tweak of a slide goes: edits of the deck, and of problem files (equations that
+/// come from `File(..)`), and how many live-only switches were left out.
+#[derive(Debug, Default)]
+pub struct Edits {
+    pub deck: Vec<ValueEdit>,
+    pub files: Vec<(PathBuf, Vec<(String, NewValue)>)>,
+    pub skipped: usize,
+}
+
+impl Edits {
+    pub fn count(&self) -> usize {
+        self.deck.len() + self.files.iter().map(|(_, e)| e.len()).sum::<usize>()
+    }
+
+    fn to_file(&mut self, file: &Path, at: String, value: NewValue) {
+        match self.files.iter_mut().find(|(f, _)| f == file) {
+            Some((_, edits)) => edits.push((at, value)),
+            None => self.files.push((file.to_path_buf(), vec![(at, value)])),
+        }
+    }
+}
+
+/// The edits that write `state`'s tweaked values (and typed equations) of `slide` back.
+pub fn edits_for(slide: &Slide, state: &mut SlideState) -> Result<Edits, String> {
     let id = slide
         .id
         .clone()
         .ok_or("write-back needs the slide to have an `id` in the file")?;
-    let order = widget_paths(slide);
-    Ok(state
-        .tweaked()
-        .into_iter()
-        .filter_map(|(path, param, v)| {
-            let widget = order.iter().position(|p| *p == path)?;
-            Some(ValueEdit {
-                slide: id.clone(),
-                widget,
-                param,
-                value: match v {
-                    ParamSnapshot::F64(x) => format!("{x:?}"),
-                    ParamSnapshot::Bool(b) => b.to_string(),
-                    ParamSnapshot::Usize(n) => n.to_string(),
-                },
-            })
+    let mut out = Edits::default();
+    let raw = |v: ParamSnapshot| {
+        NewValue::Raw(match v {
+            ParamSnapshot::F64(x) => format!("{x:?}"),
+            ParamSnapshot::Bool(b) => b.to_string(),
+            ParamSnapshot::Usize(n) => n.to_string(),
         })
-        .collect())
+    };
+    for (path, param, v) in state.tweaked() {
+        let target = state.write_target(&path, &param).unwrap_or(WriteTo::Spec);
+        let ode_file = state
+            .widget_at(&path)
+            .and_then(|w| w.ode())
+            .and_then(|o| o.file().map(Path::to_path_buf));
+        match target {
+            WriteTo::Nowhere => out.skipped += 1,
+            WriteTo::Spec => out.deck.push(ValueEdit {
+                slide: id.clone(),
+                block: path,
+                param,
+                value: raw(v),
+            }),
+            WriteTo::OdeParam(name) => match ode_file {
+                Some(file) => out.to_file(&file, format!("params.{name}"), raw(v)),
+                None => out.deck.push(ValueEdit {
+                    slide: id.clone(),
+                    block: path,
+                    param: format!("ode.params.{name}"),
+                    value: raw(v),
+                }),
+            },
+        }
+    }
+    for (path, _, ode) in state.odes() {
+        let file = ode.file().map(Path::to_path_buf);
+        for (slot, text) in ode.typed() {
+            match &file {
+                Some(f) => out.to_file(f, slot.def_path(), NewValue::Str(text)),
+                None => out.deck.push(ValueEdit {
+                    slide: id.clone(),
+                    block: path.clone(),
+                    param: format!("ode.{}", slot.def_path()),
+                    value: NewValue::Str(text),
+                }),
+            }
+        }
+    }
+    Ok(out)
 }
 
-/// Writes the current slide's tweaks into `deck_path` (atomically); returns how many values
-/// were written.
+/// Writes the current slide's tweaks (and typed equations) into `deck_path` and the problem
+/// files they come from (each atomically, and none unless all can be written); returns how
+/// many values were written.
 pub fn write_back(
     deck_path: &Path,
     slide: &Slide,
     state: &mut SlideState,
 ) -> Result<usize, String> {
     let edits = edits_for(slide, state)?;
-    if edits.is_empty() {
-        return Ok(0);
+    let mut writes: Vec<(PathBuf, String)> = Vec::new();
+    let read = |p: &Path| {
+        std::fs::read_to_string(p).map_err(|e| format!("cannot read {}: {e}", p.display()))
+    };
+    if !edits.deck.is_empty() {
+        let text = read(deck_path)?;
+        writes.push((deck_path.to_path_buf(), apply_edits(&text, &edits.deck)?));
     }
-    let text = std::fs::read_to_string(deck_path)
-        .map_err(|e| format!("cannot read {}: {e}", deck_path.display()))?;
-    let new = apply_edits(&text, &edits)?;
-    write_atomic(deck_path, &new)
-        .map_err(|e| format!("cannot write {}: {e}", deck_path.display()))?;
-    Ok(edits.len())
+    for (file, at) in &edits.files {
+        let text = read(file)?;
+        let new = apply_at(&text, at).map_err(|e| format!("{}: {e}", file.display()))?;
+        writes.push((file.clone(), new));
+    }
+    for (file, text) in &writes {
+        write_atomic(file, text).map_err(|e| format!("cannot write {}: {e}", file.display()))?;
+    }
+    Ok(edits.count())
 }

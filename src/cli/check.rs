@@ -143,7 +143,14 @@ fn check_file(file: &Path, report: &mut Report) {
                     deck.slides.len(),
                     minutes(deck.planned_secs())
                 ));
-                Ok(())
+                // A widget whose equation or tableau does not load leaves the talk running,
+                // but it is still a problem to fix before the talk.
+                let widget_problems: Vec<Diagnostic> = deck
+                    .widget_problems
+                    .iter()
+                    .map(|p| p.diagnostic.clone())
+                    .collect();
+                as_result(widget_problems)
             }
             Err(d) => Err(vec![d]),
         },

@@ -3,16 +3,18 @@
 use std::collections::HashMap;
 use std::path::Path;
 
-use super::Deck;
+use super::widgets::{OdeSource, WidgetSpec};
+use super::{Deck, WidgetProblem, block_tree_path};
 use crate::diag::Diagnostic;
 
 /// Parses deck text; `file` only names the source in errors.
 pub fn parse_deck(text: &str, file: &Path) -> Result<Deck, Diagnostic> {
-    let deck: Deck = ron::Options::default()
+    let mut deck: Deck = ron::Options::default()
         .with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME)
         .from_str(text)
         .map_err(|e| at_token(text, Diagnostic::from_ron(file, &e)))?;
     validate(&deck, text, file)?;
+    deck.widget_problems = widget_problems(&deck, text, file);
     Ok(deck)
 }
 
@@ -28,6 +30,7 @@ pub fn load_deck(path: &Path) -> Result<Deck, Diagnostic> {
 pub fn parse_deck_file(text: &str, path: &Path) -> Result<Deck, Diagnostic> {
     let mut deck = parse_deck(text, path)?;
     deck.base_dir = path.parent().map(Path::to_path_buf);
+    deck.path = Some(path.to_path_buf());
     Ok(deck)
 }
 
@@ -68,6 +71,57 @@ fn validate(deck: &Deck, text: &str, file: &Path) -> Result<(), Diagnostic> {
         }
     }
     Ok(())
+}
+
+/// Per-widget problems, which do not stop the deck from loading: every ODE source is read and
+/// compiled and every named tableau file read, and each fault is put at the deck's own line and
+/// column (inside the expression string, at the faulty character). `file` is the deck: files it
+/// names resolve against it.
+pub fn widget_problems(deck: &Deck, text: &str, file: &Path) -> Vec<WidgetProblem> {
+    let mut out = Vec::new();
+    let tree = crate::ron_tree::parse(text).ok();
+    for (i, slide) in deck.slides.iter().enumerate() {
+        for (block, spec) in slide.widgets() {
+            let base = block_tree_path(i, &block);
+            let mut push = |diagnostic: Diagnostic| {
+                out.push(WidgetProblem {
+                    slide: i,
+                    block: block.clone(),
+                    diagnostic,
+                })
+            };
+            if let Some(ode) = spec.ode()
+                && let Err(e) = ode.load(Some(file))
+            {
+                // a File source's path: the string inside File(..)
+                let at = match ode {
+                    OdeSource::File(_) => format!("{base}.ode.0"),
+                    OdeSource::Inline(_) => format!("{base}.ode"),
+                };
+                push(e.diagnostic(text, &at, file));
+            }
+            let list = match spec {
+                WidgetSpec::StepConstruction(_) => "method".to_string(),
+                _ => "methods".to_string(),
+            };
+            for (k, m) in spec.methods().iter().enumerate() {
+                if let Err(msg) = m.resolve(Some(file)) {
+                    let at = if list == "method" {
+                        format!("{base}.method.0")
+                    } else {
+                        format!("{base}.{list}[{k}].0")
+                    };
+                    let (line, col) = tree
+                        .as_ref()
+                        .and_then(|t| t.at(&at))
+                        .and_then(|n| n.str_offset(text, 0))
+                        .map_or((0, 0), |b| crate::ron_tree::line_col(text, b));
+                    push(Diagnostic::new(file, line, col, msg));
+                }
+            }
+        }
+    }
+    out
 }
 
 /// RON reports some errors at the whitespace before the offending token (`title: 42` points

@@ -9,6 +9,8 @@ pub mod widgets;
 pub mod write_back;
 
 pub use load::{load_deck, parse_deck, parse_deck_file};
-pub use model::{Aspect, Block, BookmarkDecl, Deck, Layout, Slide, Theme};
+pub use model::{
+    Aspect, Block, BookmarkDecl, Deck, Layout, Slide, Theme, WidgetProblem, block_tree_path,
+};
 pub use nav::Nav;
 pub use session::DeckSession;

@@ -23,6 +23,24 @@ pub struct Deck {
     /// The folder the deck was loaded from; image paths are relative to it. Not in the file.
     #[serde(skip)]
     pub base_dir: Option<PathBuf>,
+    /// The deck file itself (widgets resolve problem and tableau files against it). Not in the
+    /// file.
+    #[serde(skip)]
+    pub path: Option<PathBuf>,
+    /// Problems of single widgets found while loading (an equation that does not compile, a
+    /// missing problem or tableau file), at the deck's own line and column. They do not stop
+    /// the talk: that widget shows its error (or its last good equation), the rest works.
+    #[serde(skip)]
+    pub widget_problems: Vec<WidgetProblem>,
+}
+
+/// A problem of one widget: slide index, block path (indices into the body, then into
+/// columns) and the diagnostic at the deck's line and column.
+#[derive(Debug, Clone, PartialEq)]
+pub struct WidgetProblem {
+    pub slide: usize,
+    pub block: Vec<usize>,
+    pub diagnostic: crate::diag::Diagnostic,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -77,6 +95,44 @@ impl Slide {
     pub fn key(&self) -> &str {
         self.id.as_deref().unwrap_or(&self.title)
     }
+
+    /// Every widget block of the slide with its block path (indices into the body, then into
+    /// columns), in file order.
+    pub fn widgets(&self) -> Vec<(Vec<usize>, &WidgetSpec)> {
+        fn walk<'a>(
+            blocks: &'a [Block],
+            path: &mut Vec<usize>,
+            out: &mut Vec<(Vec<usize>, &'a WidgetSpec)>,
+        ) {
+            for (i, b) in blocks.iter().enumerate() {
+                path.push(i);
+                match b {
+                    Block::Widget(spec) => out.push((path.clone(), spec)),
+                    Block::Columns(cols) => {
+                        for (c, col) in cols.iter().enumerate() {
+                            path.push(c);
+                            walk(col, path, out);
+                            path.pop();
+                        }
+                    }
+                    _ => {}
+                }
+                path.pop();
+            }
+        }
+        let mut out = Vec::new();
+        walk(&self.body, &mut Vec::new(), &mut out);
+        out
+    }
+}
+
+/// The [`crate::ron_tree`] path of a block of slide `slide`: `slides[3].body[2][1][0]`.
+pub fn block_tree_path(slide: usize, block: &[usize]) -> String {
+    let mut s = format!("slides[{slide}].body");
+    for i in block {
+        s.push_str(&format!("[{i}]"));
+    }
+    s
 }
 
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]

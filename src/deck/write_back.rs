@@ -6,24 +6,86 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-/// One value to write: parameter `param` (e.g. `h`, or `start.1` for the second element of the
-/// tuple `start`) of the `widget`-th `Widget(...)` (0-based, in file order) on slide `slide`.
+use crate::ron_tree::{self, Node, Value};
+
+/// A new value as it goes into the file.
+#[derive(Debug, Clone, PartialEq)]
+pub enum NewValue {
+    /// RON text as is: `0.5`, `true`, `12`.
+    Raw(String),
+    /// A string, written as a RON string literal (quotes and backslashes escaped).
+    Str(String),
+}
+
+/// One value to write: `param` (a [`ron_tree`] path inside the widget: `h`, `start.1`,
+/// `ode.params.k`, `ode.rhs[0]`) of the widget at block path `block` (indices into the body,
+/// then into columns) on the slide whose `id` is `slide`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ValueEdit {
     pub slide: String,
-    pub widget: usize,
+    pub block: Vec<usize>,
     pub param: String,
-    /// The new value as RON text (`0.5`, `true`, `12`).
-    pub value: String,
+    pub value: NewValue,
 }
 
-/// `text` with every edit applied. Fails (changing nothing) if a value cannot be located.
+/// The [`ron_tree`] path of `edit`'s value in the deck `tree`: the slide is found by its id in
+/// the file as it is now (slides may have moved since it was loaded).
+fn deck_path_of(tree: &Node, edit: &ValueEdit) -> Result<String, String> {
+    let err = |what: &str| format!("slide \"{}\": {what}", edit.slide);
+    let slides = tree
+        .field("slides")
+        .ok_or_else(|| err("the file has no slides"))?;
+    let index = slides
+        .items()
+        .iter()
+        .position(|s| s.field("id").and_then(Node::as_str) == Some(edit.slide.as_str()))
+        .ok_or_else(|| err("no slide with this id in the file"))?;
+    Ok(format!(
+        "{}.{}",
+        super::block_tree_path(index, &edit.block),
+        edit.param
+    ))
+}
+
+/// `text` (a deck) with every edit applied, changing only those values' bytes. Fails
+/// (changing nothing) if a value cannot be located.
 pub fn apply_edits(text: &str, edits: &[ValueEdit]) -> Result<String, String> {
-    let code = code_mask(text);
-    let mut spans: Vec<(usize, usize, &str)> = Vec::new();
-    for e in edits {
-        let (a, b) = locate(text, &code, e)?;
-        spans.push((a, b, e.value.as_str()));
+    let tree =
+        ron_tree::parse(text).map_err(|e| format!("the file does not parse: {}", e.message))?;
+    let at: Vec<(String, NewValue)> = edits
+        .iter()
+        .map(|e| Ok((deck_path_of(&tree, e)?, e.value.clone())))
+        .collect::<Result<_, String>>()?;
+    apply_at(text, &at)
+}
+
+/// `text` with the value at each [`ron_tree`] path replaced (any RON file: a deck, a problem
+/// file), changing only those bytes.
+pub fn apply_at(text: &str, edits: &[(String, NewValue)]) -> Result<String, String> {
+    let tree =
+        ron_tree::parse(text).map_err(|e| format!("the file does not parse: {}", e.message))?;
+    let mut spans: Vec<(usize, usize, String)> = Vec::new();
+    for (path, value) in edits {
+        let node = tree.at(path).ok_or_else(|| {
+            format!(
+                "`{path}` is not written in the file (only values in the file can be written back)"
+            )
+        })?;
+        let new = match value {
+            NewValue::Raw(v) => {
+                if !matches!(node.value, Value::Number(_) | Value::Ident(_)) {
+                    return Err(format!("`{path}` has no plain value to replace"));
+                }
+                v.clone()
+            }
+            NewValue::Str(v) => {
+                if node.as_str().is_none() {
+                    return Err(format!("`{path}` is not a string"));
+                }
+                ron_string(v)
+            }
+        };
+        spans.push((node.span.start, node.span.end, new));
     }
     spans.sort_by_key(|s| s.0);
     let mut out = String::with_capacity(text.len());
@@ -33,11 +95,27 @@ pub fn apply_edits(text: &str, edits: &[ValueEdit]) -> Result<String, String> {
             return Err("two edits touch the same value".into());
         }
         out.push_str(&text[at..a]);
-        out.push_str(v);
+        out.push_str(&v);
         at = b;
     }
     out.push_str(&text[at..]);
     Ok(out)
+}
+
+/// `s` as a RON string literal.
+pub fn ron_string(s: &str) -> String {
+    let mut out = String::with_capacity(s.len() + 2);
+    out.push('"');
+    for c in s.chars() {
+        match c {
+            '"' => out.push_str("\\\""),
+            '\\' => out.push_str("\\\\"),
+            '\n' => out.push_str("\\n"),
+            other => out.push(other),
+        }
+    }
+    out.push('"');
+    out
 }
 
 /// Writes `text` to `path` atomically: temp file beside it, synced, renamed over. `write` does
@@ -73,232 +151,31 @@ fn temp_path(path: &Path) -> PathBuf {
     path.with_file_name(format!(".{name}.lectern-tmp"))
 }
 
-/// For each byte: is it code (not inside a string or comment)?
-fn code_mask(text: &str) -> Vec<bool> {
-    let b = text.as_bytes();
-    let mut mask = vec![true; b.len()];
-    let mut i = 0;
-    while i < b.len() {
-        let start = i;
-        if b[i] == b'/' && b.get(i + 1) == Some(&b'/') {
-            while i < b.len() && b[i] != b'\n' {
-                i += 1;
-            }
-        } else if b[i] == b'/' && b.get(i + 1) == Some(&b'*') {
-            i += 2;
-            while i + 1 < b.len() && !(b[i] == b'*' && b[i + 1] == b'/') {
-                i += 1;
-            }
-            i = (i + 2).min(b.len());
-        } else if b[i] == b'r' && matches!(b.get(i + 1), Some(b'#') | Some(b'"')) {
-            let mut hashes = 0;
-            let mut j = i + 1;
-            while b.get(j) == Some(&b'#') {
-                hashes += 1;
-                j += 1;
-            }
-            if b.get(j) != Some(&b'"') {
-                i += 1;
-                continue;
-            }
-            j += 1;
-            let close: Vec<u8> = std::iter::once(b'"')
-                .chain(std::iter::repeat_n(b'#', hashes))
-                .collect();
-            while j < b.len() && !b[j..].starts_with(&close) {
-                j += 1;
-            }
-            i = (j + close.len()).min(b.len());
-        } else if b[i] == b'"' {
-            i += 1;
-            while i < b.len() && b[i] != b'"' {
-                if b[i] == b'\\' {
-                    i += 1;
-                }
-                i += 1;
-            }
-            i = (i + 1).min(b.len());
-        } else {
-            i += 1;
-            continue;
-        }
-        mask[start..i].iter_mut().for_each(|m| *m = false);
-    }
-    mask
-}
-
-/// Byte offset of the bracket closing the one at `open`, skipping non-code.
-fn matching(text: &[u8], code: &[bool], open: usize) -> Option<usize> {
-    let mut depth = 0i32;
-    for i in open..text.len() {
-        if !code[i] {
-            continue;
-        }
-        match text[i] {
-            b'(' | b'[' | b'{' => depth += 1,
-            b')' | b']' | b'}' => {
-                depth -= 1;
-                if depth == 0 {
-                    return Some(i);
-                }
-            }
-            _ => {}
-        }
-    }
-    None
-}
-
-fn is_ident(c: u8) -> bool {
-    c.is_ascii_alphanumeric() || c == b'_'
-}
-
-/// Code positions in `lo..hi` where the identifier `word` starts (whole word).
-fn find_word(text: &[u8], code: &[bool], word: &str, lo: usize, hi: usize) -> Vec<usize> {
-    let w = word.as_bytes();
-    (lo..hi.saturating_sub(w.len() - 1))
-        .filter(|&i| {
-            code[i]
-                && text[i..].starts_with(w)
-                && (i == 0 || !is_ident(text[i - 1]))
-                && text.get(i + w.len()).is_none_or(|c| !is_ident(*c))
-        })
-        .collect()
-}
-
-fn skip_ws(text: &[u8], mut i: usize) -> usize {
-    while i < text.len() && text[i].is_ascii_whitespace() {
-        i += 1;
-    }
-    i
-}
-
-/// The span of the scalar value of `edit` in the file.
-fn locate(text: &str, code: &[bool], edit: &ValueEdit) -> Result<(usize, usize), String> {
-    let b = text.as_bytes();
-    let err = |what: &str| format!("slide \"{}\": {what}", edit.slide);
-    // The slide: the tuple around `id: "<slide>"`.
-    let quoted = format!("\"{}\"", edit.slide);
-    let id_at = find_word(b, code, "id", 0, b.len())
-        .into_iter()
-        .find(|&i| {
-            let j = skip_ws(b, i + 2);
-            b.get(j) == Some(&b':') && {
-                let k = skip_ws(b, j + 1);
-                let k = if text[k..].starts_with("Some(") {
-                    k + 5
-                } else {
-                    k
-                };
-                text[k..].starts_with(&quoted)
-            }
-        })
-        .ok_or_else(|| err("no slide with this id in the file"))?;
-    let mut depth = 0i32;
-    let open = (0..id_at)
-        .rev()
-        .find(|&i| {
-            if !code[i] {
-                return false;
-            }
-            match b[i] {
-                b')' | b']' | b'}' => depth += 1,
-                b'(' | b'[' | b'{' => {
-                    if depth == 0 {
-                        return true;
-                    }
-                    depth -= 1;
-                }
-                _ => {}
-            }
-            false
-        })
-        .ok_or_else(|| err("cannot find where the slide starts"))?;
-    let close = matching(b, code, open).ok_or_else(|| err("unbalanced brackets"))?;
-    // The widget: the n-th `Widget(` in the slide.
-    let w = find_word(b, code, "Widget", open, close)
-        .into_iter()
-        .filter(|&i| b.get(skip_ws(b, i + 6)) == Some(&b'('))
-        .nth(edit.widget)
-        .ok_or_else(|| err(&format!("no widget number {}", edit.widget + 1)))?;
-    let w_open = skip_ws(b, w + 6);
-    let w_close = matching(b, code, w_open).ok_or_else(|| err("unbalanced widget"))?;
-    // The field, then the tuple element if the id has one (`start.1`).
-    let mut parts = edit.param.split('.');
-    let field = parts.next().unwrap_or_default();
-    let f = find_word(b, code, field, w_open, w_close)
-        .into_iter()
-        .find(|&i| b.get(skip_ws(b, i + field.len())) == Some(&b':'))
-        .ok_or_else(|| {
-            err(&format!(
-                "`{field}` is not written in the widget (only values in the file can be written back)"
-            ))
-        })?;
-    let mut v = skip_ws(b, skip_ws(b, f + field.len()) + 1);
-    for idx in parts {
-        let idx: usize = idx
-            .parse()
-            .map_err(|_| err(&format!("bad parameter id {}", edit.param)))?;
-        if b.get(v) != Some(&b'(') && b.get(v) != Some(&b'[') {
-            return Err(err(&format!("`{field}` is not a tuple")));
-        }
-        let end = matching(b, code, v).ok_or_else(|| err("unbalanced tuple"))?;
-        let mut depth = 0;
-        let mut element = 0;
-        let mut start = v + 1;
-        for i in v + 1..end {
-            if !code[i] {
-                continue;
-            }
-            match b[i] {
-                b'(' | b'[' | b'{' => depth += 1,
-                b')' | b']' | b'}' => depth -= 1,
-                b',' if depth == 0 => {
-                    if element == idx {
-                        break;
-                    }
-                    element += 1;
-                    start = i + 1;
-                }
-                _ => {}
-            }
-        }
-        if element != idx {
-            return Err(err(&format!("`{field}` has no element {idx}")));
-        }
-        v = skip_ws(b, start);
-    }
-    let mut end = v;
-    while end < b.len() && (is_ident(b[end]) || matches!(b[end], b'.' | b'-' | b'+')) {
-        end += 1;
-    }
-    if end == v {
-        return Err(err(&format!(
-            "`{}` has no plain value to replace",
-            edit.param
-        )));
-    }
-    Ok((v, end))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
     fn replaces_only_the_value_and_skips_strings_and_comments() {
-        let text = "(slides: [\n (id: \"a\", body: [Widget(X((h: 1.0)))]),\n // id: \"b\" h: 9\n (id: \"b\", title: \"h: 3\", body: [Text(\"Widget(\"), Widget(S((h: 0.1, start: (1.0, -2.5)))), Widget(S((h: 2)))]),\n])";
-        let edit = |w, p: &str, v: &str| ValueEdit {
+        let text = "(slides: [\n (id: \"a\", body: [Widget(X((h: 1.0)))]),\n // id: \"b\" h: 9\n (id: \"b\", title: \"h: 3\", body: [Text(\"Widget(\"), Widget(S((h: 0.1, start: (1.0, -2.5)))), Columns([[Text(\"x\")], [Widget(S((h: 2, ode: Inline((rhs: [\"x\"])))))]])]),\n])";
+        let edit = |block: Vec<usize>, p: &str, v: NewValue| ValueEdit {
             slide: "b".into(),
-            widget: w,
+            block,
             param: p.into(),
-            value: v.into(),
+            value: v,
         };
+        let raw = |v: &str| NewValue::Raw(v.into());
         let out = apply_edits(
             text,
             &[
-                edit(0, "h", "0.5"),
-                edit(0, "start.1", "4.0"),
-                edit(1, "h", "3"),
+                edit(vec![1], "h", raw("0.5")),
+                edit(vec![1], "start.1", raw("4.0")),
+                edit(vec![2, 1, 0], "h", raw("3")),
+                edit(
+                    vec![2, 1, 0],
+                    "ode.rhs[0]",
+                    NewValue::Str("-2*x + \"q\"".into()),
+                ),
             ],
         )
         .unwrap();
@@ -306,8 +183,19 @@ mod tests {
             out,
             text.replace("h: 0.1", "h: 0.5")
                 .replace("-2.5", "4.0")
-                .replace("h: 2)", "h: 3)")
+                .replace("h: 2,", "h: 3,")
+                .replace("[\"x\"]", "[\"-2*x + \\\"q\\\"\"]")
         );
-        assert!(apply_edits(text, &[edit(0, "turns", "1")]).is_err());
+        assert!(apply_edits(text, &[edit(vec![1], "turns", raw("1"))]).is_err());
+        assert!(apply_edits(text, &[edit(vec![1], "start", raw("1"))]).is_err());
+        let other = ValueEdit {
+            slide: "zz".into(),
+            ..edit(vec![1], "h", raw("1"))
+        };
+        assert!(
+            apply_edits(text, &[other])
+                .unwrap_err()
+                .contains("no slide")
+        );
     }
 }

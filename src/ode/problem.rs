@@ -12,33 +12,314 @@
 //!     exact: Some(["cos(w*t)", "-w*sin(w*t)"]),
 //! )
 //! ```
-//! Errors in an expression are reported at their line and column in the file.
+//! One definition, [`ProblemDef`], is read from problem files and written inline in a deck
+//! (`ode: Inline((vars: …, rhs: …))`); [`ProblemDef::compile`] checks it and says where a fault
+//! is ([`DefError`], a field, item and character), so each reader reports it at its own file's
+//! line and column. Errors in a problem file are reported at their line and column in the file.
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 use super::System;
 use super::expr::{self, Program};
 use crate::diag::Diagnostic;
+use crate::ron_tree;
 
-#[derive(Debug, Deserialize)]
+/// An ODE problem as written: every field of a problem file. Inline in a deck, `name` may be
+/// left out.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct ProblemFile {
-    name: String,
-    vars: Vec<String>,
-    rhs: Vec<String>,
+pub struct ProblemDef {
     #[serde(default)]
-    params: BTreeMap<String, f64>,
-    initial: Vec<f64>,
+    pub name: String,
+    pub vars: Vec<String>,
+    /// One expression per variable: ẋᵢ = rhs[i](t, vars…, params…).
+    pub rhs: Vec<String>,
     #[serde(default)]
-    t0: f64,
+    pub params: BTreeMap<String, f64>,
+    /// Slider range of a parameter on the presenter's screen, e.g. `{"k": (0.0, 5.0)}`;
+    /// parameters not listed get a range around their value.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub ranges: BTreeMap<String, (f64, f64)>,
+    pub initial: Vec<f64>,
     #[serde(default)]
-    exact: Option<Vec<String>>,
+    pub t0: f64,
+    /// The exact solution, one expression per variable, of `t`, the parameters, `t0` and the
+    /// variables (which read the initial values).
+    #[serde(default)]
+    pub exact: Option<Vec<String>>,
 }
 
-/// A loaded problem: it is a [`System`] (the compiled right-hand side) with its initial value.
+/// Where in a [`ProblemDef`] a fault is.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum DefPos {
+    /// The definition as a whole.
+    Whole,
+    /// A field (`vars`, `rhs`, `initial`, `exact`, `t0`, `params`, `ranges`).
+    Field(&'static str),
+    /// Item `i` of a list field (`vars[1]`).
+    Item(&'static str, usize),
+    /// Character `char` (0-based) of expression `i` of `rhs` or `exact`.
+    InExpr(&'static str, usize, usize),
+    /// The value of parameter (or range) `name`.
+    Entry(&'static str, String),
+}
+
+impl DefPos {
+    /// The path of the value inside the definition, for [`ron_tree::Node::at`], and the
+    /// character inside that string (0 if not a string).
+    pub fn tree_path(&self) -> (String, usize) {
+        match self {
+            DefPos::Whole => (String::new(), 0),
+            DefPos::Field(f) => (f.to_string(), 0),
+            DefPos::Item(f, i) => (format!("{f}[{i}]"), 0),
+            DefPos::InExpr(f, i, c) => (format!("{f}[{i}]"), *c),
+            DefPos::Entry(f, name) => (format!("{f}.{name}"), 0),
+        }
+    }
+}
+
+/// A fault in a definition: where, and what.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DefError {
+    pub pos: DefPos,
+    pub message: String,
+}
+
+impl std::fmt::Display for DefError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+/// The longest expression accepted: a lecture's right-hand side is a line, and the parser and
+/// compiler recurse on nesting, so a pasted novel must come back as a message, not a crash.
+pub const MAX_EXPR_CHARS: usize = 2000;
+/// The deepest nesting of parentheses, powers and prefix signs accepted.
+pub const MAX_EXPR_DEPTH: usize = 48;
+
+/// Refuses expressions too long or too deeply nested to parse safely (the parser recurses).
+pub fn check_expr_size(src: &str) -> Result<(), expr::ExprError> {
+    let n = src.chars().count();
+    if n > MAX_EXPR_CHARS {
+        return Err(expr::ExprError {
+            offset: MAX_EXPR_CHARS,
+            token: format!("{n} characters"),
+            message: format!(
+                "the expression is {n} characters long; at most {MAX_EXPR_CHARS} are accepted"
+            ),
+        });
+    }
+    // Nesting: open parentheses, plus every `^` and prefix sign (each recurses once).
+    let mut depth = 0usize;
+    let mut deepest = (0usize, 0usize);
+    let mut prev_operand_end = false;
+    for (i, c) in src.chars().enumerate() {
+        match c {
+            '(' => depth += 1,
+            ')' => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+        let prefix = matches!(c, '-' | '+') && !prev_operand_end;
+        let extra = usize::from(c == '^' || prefix);
+        if c == '(' || extra > 0 {
+            // powers and prefix signs count towards the depth of what follows
+            depth += extra;
+            if depth > deepest.0 {
+                deepest = (depth, i);
+            }
+        }
+        if !c.is_whitespace() {
+            prev_operand_end = c.is_alphanumeric() || c == '_' || c == ')' || c == '.';
+        }
+    }
+    if deepest.0 > MAX_EXPR_DEPTH {
+        return Err(expr::ExprError {
+            offset: deepest.1,
+            token: src
+                .chars()
+                .nth(deepest.1)
+                .map(String::from)
+                .unwrap_or_default(),
+            message: format!(
+                "the expression nests {} levels deep; at most {MAX_EXPR_DEPTH} are accepted",
+                deepest.0
+            ),
+        });
+    }
+    Ok(())
+}
+
+/// Parses, size-checks and compiles the expressions of one list field.
+fn compile_exprs(
+    field: &'static str,
+    exprs: &[String],
+    inputs: &[String],
+    params: &[(String, f64)],
+) -> Result<Program, DefError> {
+    let fail = |i: usize, e: expr::ExprError| DefError {
+        pos: DefPos::InExpr(field, i, e.offset),
+        message: format!("in {field}[{i}]: {}: `{}`", e.message, e.token),
+    };
+    for (i, e) in exprs.iter().enumerate() {
+        check_expr_size(e).map_err(|err| fail(i, err))?;
+    }
+    expr::compile(exprs, inputs, params).map_err(|(i, e)| fail(i, e))
+}
+
+impl ProblemDef {
+    /// Checks the definition and compiles its expressions; `path` is kept for messages.
+    pub fn compile(&self, path: impl AsRef<Path>) -> Result<Problem, DefError> {
+        let err = |pos: DefPos, message: String| DefError { pos, message };
+        let n = self.vars.len();
+        if n == 0 {
+            return Err(err(
+                DefPos::Field("vars"),
+                "`vars` is empty: a problem needs at least one variable".into(),
+            ));
+        }
+        if self.rhs.len() != n {
+            return Err(err(
+                DefPos::Field("rhs"),
+                format!(
+                    "`rhs` has {} expressions but `vars` names {n} variables",
+                    self.rhs.len()
+                ),
+            ));
+        }
+        if self.initial.len() != n {
+            return Err(err(
+                DefPos::Field("initial"),
+                format!(
+                    "`initial` has {} values but `vars` names {n} variables",
+                    self.initial.len()
+                ),
+            ));
+        }
+        if let Some(ex) = &self.exact
+            && ex.len() != n
+        {
+            return Err(err(
+                DefPos::Field("exact"),
+                format!(
+                    "`exact` has {} expressions but `vars` names {n} variables",
+                    ex.len()
+                ),
+            ));
+        }
+        let mut names: Vec<&str> = vec!["t"];
+        let vars = self
+            .vars
+            .iter()
+            .enumerate()
+            .map(|(i, v)| (DefPos::Item("vars", i), v));
+        let params = self
+            .params
+            .keys()
+            .map(|k| (DefPos::Entry("params", k.clone()), k));
+        for (pos, name) in vars.chain(params) {
+            let ok = name
+                .chars()
+                .next()
+                .is_some_and(|c| c.is_alphabetic() || c == '_')
+                && name.chars().all(|c| c.is_alphanumeric() || c == '_');
+            if !ok {
+                return Err(err(
+                    pos,
+                    format!("`{name}` is not a valid name (letters, digits, _)"),
+                ));
+            }
+            if expr::is_reserved(name) || name == "t0" {
+                return Err(err(
+                    pos,
+                    format!(
+                        "`{name}` names a function or constant (or the start time t0) and cannot be a variable or parameter"
+                    ),
+                ));
+            }
+            if names.contains(&name.as_str()) {
+                return Err(err(
+                    pos,
+                    format!(
+                        "the name `{name}` is used twice (variables, parameters and t share one namespace)"
+                    ),
+                ));
+            }
+            names.push(name);
+        }
+        if !self.t0.is_finite() {
+            return Err(err(
+                DefPos::Field("t0"),
+                format!("t0 = {} must be finite", self.t0),
+            ));
+        }
+        for (i, v) in self.initial.iter().enumerate() {
+            if !v.is_finite() {
+                return Err(err(
+                    DefPos::Item("initial", i),
+                    format!("initial[{i}] = {v} must be a finite number"),
+                ));
+            }
+        }
+        for (k, v) in &self.params {
+            if !v.is_finite() {
+                return Err(err(
+                    DefPos::Entry("params", k.clone()),
+                    format!("parameter `{k}` = {v} must be a finite number"),
+                ));
+            }
+        }
+        for (k, (lo, hi)) in &self.ranges {
+            if !self.params.contains_key(k) {
+                return Err(err(
+                    DefPos::Entry("ranges", k.clone()),
+                    format!("`ranges` names `{k}`, which is not a parameter"),
+                ));
+            }
+            if !(lo.is_finite() && hi.is_finite() && lo < hi) {
+                return Err(err(
+                    DefPos::Entry("ranges", k.clone()),
+                    format!("the range of `{k}` must be two finite numbers, low < high"),
+                ));
+            }
+        }
+        let params: Vec<(String, f64)> = self.params.clone().into_iter().collect();
+        let mut inputs = self.vars.clone();
+        let rhs = compile_exprs("rhs", &self.rhs, &inputs, &params)?;
+        inputs.push("t0".into());
+        let exact = match &self.exact {
+            Some(ex) => Some(compile_exprs("exact", ex, &inputs, &params)?),
+            None => None,
+        };
+        Ok(Problem {
+            name: self.name.clone(),
+            path: path.as_ref().to_path_buf(),
+            vars: self.vars.clone(),
+            rhs_src: self.rhs.clone(),
+            params,
+            initial: self.initial.clone(),
+            t0: self.t0,
+            exact_src: self.exact.clone(),
+            rhs,
+            exact,
+        })
+    }
+
+    /// The slider range of parameter `name`: from `ranges`, else twice its size either side of
+    /// its value (±1 around zero).
+    pub fn range_of(&self, name: &str) -> (f64, f64) {
+        if let Some(r) = self.ranges.get(name) {
+            return *r;
+        }
+        let v = self.params.get(name).copied().unwrap_or(0.0);
+        let half = if v == 0.0 { 1.0 } else { 2.0 * v.abs() };
+        (v - half, v + half)
+    }
+}
+
+/// A compiled problem: it is a [`System`] (the compiled right-hand side) with its initial value.
 #[derive(Debug, Clone)]
 pub struct Problem {
     pub name: String,
@@ -53,6 +334,44 @@ pub struct Problem {
     exact: Option<Program>,
 }
 
+/// A problem file's definition, or the file's own diagnostic (unreadable, not RON).
+pub fn read_def(path: &Path) -> Result<(String, ProblemDef), Diagnostic> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| Diagnostic::whole_file(path, format!("cannot read problem: {e}")))?;
+    let def = parse_def(&text, path)?;
+    Ok((text, def))
+}
+
+fn parse_def(text: &str, path: &Path) -> Result<ProblemDef, Diagnostic> {
+    if text.trim().is_empty() {
+        return Err(Diagnostic::whole_file(path, "problem file is empty"));
+    }
+    ron::from_str(text).map_err(|e| Diagnostic::from_ron(path, &e))
+}
+
+/// A [`DefError`] at its line and column in `text`, whose value at `base` (a
+/// [`ron_tree`] path, empty for the whole file) is the definition.
+pub fn diagnostic_at(text: &str, base: &str, path: &Path, e: &DefError) -> Diagnostic {
+    let (sub, ch) = e.pos.tree_path();
+    let full = match (base.is_empty(), sub.is_empty()) {
+        (true, _) => sub,
+        (false, true) => base.to_string(),
+        (false, false) => format!("{base}.{sub}"),
+    };
+    let (line, col) = ron_tree::parse(text)
+        .ok()
+        .and_then(|tree| {
+            let node = if full.is_empty() {
+                Some(&tree)
+            } else {
+                tree.at(&full)
+            };
+            node.and_then(|n| n.str_offset(text, ch))
+        })
+        .map_or((0, 0), |at| ron_tree::line_col(text, at));
+    Diagnostic::new(path, line, col, e.message.clone())
+}
+
 impl Problem {
     pub fn load(path: impl AsRef<Path>) -> Result<Self, Diagnostic> {
         let path = path.as_ref();
@@ -64,103 +383,32 @@ impl Problem {
     /// Parses problem text; `path` names the file in errors.
     pub fn parse(text: &str, path: impl AsRef<Path>) -> Result<Self, Diagnostic> {
         let path = path.as_ref();
-        if text.trim().is_empty() {
-            return Err(Diagnostic::whole_file(path, "problem file is empty"));
+        let mut def = parse_def(text, path)?;
+        if def.name.is_empty() {
+            def.name = path
+                .file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_default();
         }
-        let f: ProblemFile = ron::from_str(text).map_err(|e| Diagnostic::from_ron(path, &e))?;
-        let whole = |m: String| Diagnostic::whole_file(path, m);
-        let n = f.vars.len();
-        if n == 0 {
-            return Err(whole(
-                "`vars` is empty: a problem needs at least one variable".into(),
-            ));
-        }
-        if f.rhs.len() != n {
-            return Err(whole(format!(
-                "`rhs` has {} expressions but `vars` names {n} variables",
-                f.rhs.len()
-            )));
-        }
-        if f.initial.len() != n {
-            return Err(whole(format!(
-                "`initial` has {} values but `vars` names {n} variables",
-                f.initial.len()
-            )));
-        }
-        if let Some(ex) = &f.exact
-            && ex.len() != n
-        {
-            return Err(whole(format!(
-                "`exact` has {} expressions but `vars` names {n} variables",
-                ex.len()
-            )));
-        }
-        let mut names: Vec<&str> = vec!["t"];
-        for name in f.vars.iter().chain(f.params.keys()) {
-            let ok = name
-                .chars()
-                .next()
-                .is_some_and(|c| c.is_alphabetic() || c == '_')
-                && name.chars().all(|c| c.is_alphanumeric() || c == '_');
-            if !ok {
-                return Err(whole(format!(
-                    "`{name}` is not a valid name (letters, digits, _)"
-                )));
-            }
-            if expr::is_reserved(name) {
-                return Err(whole(format!(
-                    "`{name}` names a function or constant and cannot be a variable or parameter"
-                )));
-            }
-            if names.contains(&name.as_str()) {
-                return Err(whole(format!(
-                    "the name `{name}` is used twice (variables, parameters and t share one namespace)"
-                )));
-            }
-            names.push(name);
-        }
-        if !f.t0.is_finite() {
-            return Err(whole(format!("t0 = {} must be finite", f.t0)));
-        }
-        let params: Vec<(String, f64)> = f.params.into_iter().collect();
-        let locate = |field: &str, i: usize, e: &expr::ExprError| {
-            let (line, col) = string_position(text, field, i)
-                .map(|(l, c)| (l, c + e.offset))
-                .unwrap_or((0, 0));
-            Diagnostic::new(
-                path,
-                line,
-                col,
-                format!("in {field}[{i}]: {}: `{}`", e.message, e.token),
-            )
-        };
-        let rhs = expr::compile(&f.rhs, &f.vars, &params).map_err(|(i, e)| locate("rhs", i, &e))?;
-        let exact = match &f.exact {
-            Some(ex) => {
-                Some(expr::compile(ex, &f.vars, &params).map_err(|(i, e)| locate("exact", i, &e))?)
-            }
-            None => None,
-        };
-        Ok(Problem {
-            name: f.name,
-            path: path.to_path_buf(),
-            vars: f.vars,
-            rhs_src: f.rhs,
-            params,
-            initial: f.initial,
-            t0: f.t0,
-            exact_src: f.exact,
-            rhs,
-            exact,
-        })
+        def.compile(path)
+            .map_err(|e| diagnostic_at(text, "", path, &e))
     }
 
     /// The exact solution at time t, when the file gives one. Its expressions may use t and
     /// the parameters (the variables read the initial values).
     pub fn exact(&self, t: f64) -> Option<Vec<f64>> {
+        self.exact_from(self.t0, &self.initial, t)
+    }
+
+    /// The exact solution through `(t0, x0)` at time `t`: the expressions read `x0` for the
+    /// variables and `t0` for the start time.
+    pub fn exact_from(&self, t0: f64, x0: &[f64], t: f64) -> Option<Vec<f64>> {
         let p = self.exact.as_ref()?;
+        let mut input = Vec::with_capacity(x0.len() + 1);
+        input.extend_from_slice(x0);
+        input.push(t0);
         let mut out = vec![0.0; self.vars.len()];
-        p.eval(t, &self.initial, &mut out);
+        p.eval(t, &input, &mut out);
         Some(out)
     }
 
@@ -180,8 +428,10 @@ impl Problem {
         self.rhs = expr::compile(&self.rhs_src, &self.vars, &self.params)
             .map_err(|(_, e)| e.to_string())?;
         if let Some(src) = &self.exact_src {
+            let mut inputs = self.vars.clone();
+            inputs.push("t0".into());
             self.exact =
-                Some(expr::compile(src, &self.vars, &self.params).map_err(|(_, e)| e.to_string())?);
+                Some(expr::compile(src, &inputs, &self.params).map_err(|(_, e)| e.to_string())?);
         }
         Ok(())
     }
@@ -200,98 +450,6 @@ impl System for Problem {
     fn rhs(&self, t: f64, x: &[f64], dxdt: &mut [f64]) {
         self.rhs.eval(t, x, dxdt)
     }
-}
-
-/// 1-based (line, column) of the first character inside the quotes of the `index`-th string
-/// literal in the list after the top-level key `field` (also inside `Some([...])`).
-fn string_position(text: &str, field: &str, index: usize) -> Option<(usize, usize)> {
-    let chars: Vec<char> = text.chars().collect();
-    let fc: Vec<char> = field.chars().collect();
-    let mut i = 0;
-    let mut depth = 0i32;
-    // find `field` as a whole word at depth 1, followed by `:`
-    let start = loop {
-        if i >= chars.len() {
-            return None;
-        }
-        match chars[i] {
-            '"' => i = skip_string(&chars, i),
-            '/' if chars.get(i + 1) == Some(&'/') => {
-                while i < chars.len() && chars[i] != '\n' {
-                    i += 1;
-                }
-            }
-            '(' | '[' | '{' => {
-                depth += 1;
-                i += 1;
-            }
-            ')' | ']' | '}' => {
-                depth -= 1;
-                i += 1;
-            }
-            _ if depth == 1
-                && chars[i..].starts_with(&fc)
-                && (i == 0 || !(chars[i - 1].is_alphanumeric() || chars[i - 1] == '_'))
-                && chars[i + fc.len()..].iter().find(|c| !c.is_whitespace()) == Some(&':') =>
-            {
-                break i + fc.len();
-            }
-            _ => i += 1,
-        }
-    };
-    let mut count = 0;
-    let mut j = start;
-    let mut d = 0i32;
-    while j < chars.len() {
-        match chars[j] {
-            '"' => {
-                if count == index {
-                    let (line, col) = line_col(&chars, j + 1);
-                    return Some((line, col));
-                }
-                count += 1;
-                j = skip_string(&chars, j);
-                continue;
-            }
-            '(' | '[' | '{' => d += 1,
-            ')' | ']' | '}' => {
-                d -= 1;
-                if d <= 0 {
-                    return None;
-                }
-            }
-            ',' if d == 0 => return None,
-            _ => {}
-        }
-        j += 1;
-    }
-    None
-}
-
-/// Index just past the string literal opening at `i`.
-fn skip_string(chars: &[char], mut i: usize) -> usize {
-    i += 1;
-    while i < chars.len() && chars[i] != '"' {
-        if chars[i] == '\\' {
-            i += 1;
-        }
-        i += 1;
-    }
-    i + 1
-}
-
-fn line_col(chars: &[char], at: usize) -> (usize, usize) {
-    let mut line = 1;
-    let mut col = 1;
-    for &c in &chars[..at] {
-        if c == '\n' {
-            line += 1;
-            col = 1;
-        } else {
-            col += 1;
-        }
-    }
-    (line, col)
 }
 
 #[cfg(test)]

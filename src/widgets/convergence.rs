@@ -1,52 +1,60 @@
 //! 6. Convergence: global error at the end time vs step size h on log–log axes, one line per
 //! method, with the least-squares slope (the measured order) labelled and recomputed live.
-//! Include the notes' RK4 typo (ERRATA 1) to watch fourth order collapse to first.
+//! Include the notes' RK4 typo (ERRATA 1), `Tableau("tableaux/rk4-typo.ron")`, to watch fourth
+//! order collapse to first. The error is against the problem's exact solution at `t_end`, or a
+//! Dormand–Prince reference at rtol 1e-13 when it has none.
 
 use egui_plot::{Line, Plot, PlotPoint, Points, Text};
 
-use super::methods::{MethodId, steps_for};
+use std::path::Path as FsPath;
+
+use super::live_ode::LiveOde;
+use super::methods::{MethodSet, steps_for};
 use super::style::{self, fmt_num};
 use super::{Param, SlideWidget};
-use crate::deck::widgets::ConvergenceSpec;
-use crate::ode::study;
+use crate::deck::widgets::{ConvergenceSpec, WidgetSpec};
+use crate::ode::problem::Problem;
+use crate::ode::{Scheme, study};
 
 /// Below this, errors are round-off, not truncation: left out of the fit.
 const ERR_FLOOR: f64 = 1e-13;
 
 /// The step of halving `k`, rounded so a whole number of steps lands on t_end.
-fn level_h(spec: &ConvergenceSpec, k: usize) -> f64 {
+fn level_h(spec: &ConvergenceSpec, t0: f64, k: usize) -> f64 {
     let h = spec.h_max / 2f64.powi(k as i32);
-    spec.t_end / steps_for(0.0, spec.t_end, h, 1 << 20) as f64
+    let span = spec.t_end - t0;
+    span / steps_for(t0, spec.t_end, h, 1 << 20).max(1) as f64
 }
 
 /// Steps one method takes at halving `k` (the work the per-frame budget counts).
-fn level_steps(spec: &ConvergenceSpec, k: usize) -> usize {
-    (spec.t_end / level_h(spec, k)).round() as usize
+fn level_steps(spec: &ConvergenceSpec, t0: f64, k: usize) -> usize {
+    ((spec.t_end - t0) / level_h(spec, t0, k)).round().max(0.0) as usize
+}
+
+/// The true state at t_end: the exact solution, else a tight Dormand–Prince reference.
+pub fn truth(p: &Problem, t_end: f64) -> Vec<f64> {
+    p.exact(t_end)
+        .unwrap_or_else(|| study::reference(p, p.t0, &p.initial, t_end))
 }
 
 /// (h, error) points of one method at halvings `ks`, by `ode::study::convergence`; diverged
 /// runs (infinite error) are left out.
 pub fn errors_at(
     spec: &ConvergenceSpec,
-    m: MethodId,
+    p: &Problem,
+    truth: &[f64],
+    scheme: Scheme<'_>,
     ks: std::ops::Range<usize>,
 ) -> Vec<(f64, f64)> {
-    let (Some(scheme), Some(truth)) = (m.scheme(), spec.field.exact(0.0, spec.x0, spec.t_end))
-    else {
+    if !(spec.t_end > p.t0) {
         return Vec::new();
-    };
-    let hs: Vec<f64> = ks.map(|k| level_h(spec, k)).collect();
-    let sys = spec.field.system();
-    study::convergence(&sys, scheme, 0.0, &[spec.x0], spec.t_end, &[truth], &hs)
+    }
+    let hs: Vec<f64> = ks.map(|k| level_h(spec, p.t0, k)).collect();
+    study::convergence(p, scheme, p.t0, &p.initial, spec.t_end, truth, &hs)
         .points
         .into_iter()
         .filter(|p| p.1.is_finite())
         .collect()
-}
-
-/// (h, error) points of one method at every halving.
-pub fn errors(spec: &ConvergenceSpec, m: MethodId) -> Vec<(f64, f64)> {
-    errors_at(spec, m, 0..levels(spec))
 }
 
 fn levels(spec: &ConvergenceSpec) -> usize {
@@ -66,18 +74,24 @@ pub fn fitted_slope(pts: &[(f64, f64)]) -> Option<f64> {
 /// computed, at least one per frame, so the result does not depend on timing.
 const STEPS_PER_FRAME: usize = 40_000;
 
-type Rows = Vec<(MethodId, Vec<(f64, f64)>, Option<f64>)>;
+/// Per method (key, name, colour): its (h, error) points and fitted slope.
+type Rows = Vec<(String, String, egui::Color32, Vec<(f64, f64)>, Option<f64>)>;
+type Key = (ConvergenceSpec, u64, Vec<bool>);
 
 pub struct Convergence {
     pub spec: ConvergenceSpec,
     initial: ConvergenceSpec,
-    /// Results for a spec, complete up to `done` halvings.
-    cache: Option<(ConvergenceSpec, Rows, usize)>,
+    ode: LiveOde,
+    methods: MethodSet,
+    /// Results for a key, complete up to `done` halvings, with the truth they compare with.
+    cache: Option<(Key, Rows, usize, Vec<f64>)>,
 }
 
 impl Convergence {
-    pub fn new(spec: ConvergenceSpec) -> Self {
+    pub fn new(spec: ConvergenceSpec, deck_path: Option<&FsPath>) -> Self {
         Self {
+            ode: LiveOde::new(&spec.ode, deck_path),
+            methods: MethodSet::new(&spec.methods, deck_path),
             initial: spec.clone(),
             spec,
             cache: None,
@@ -85,55 +99,75 @@ impl Convergence {
     }
 
     /// Every halving at once (for tests and exports).
-    pub fn compute(&self) -> Rows {
+    pub fn compute(&mut self) -> Rows {
+        let Some(p) = self.ode.problem().cloned() else {
+            return Vec::new();
+        };
+        let truth = truth(&p, self.spec.t_end);
         let mut rows = self.rows_empty();
-        self.extend(&mut rows, 0..levels(&self.spec));
+        self.extend(&p, &truth, &mut rows, 0..levels(&self.spec));
         rows
     }
 
     fn rows_empty(&self) -> Rows {
-        self.methods()
-            .into_iter()
-            .map(|m| (m, Vec::new(), None))
+        self.methods
+            .shown()
+            .map(|m| {
+                (
+                    m.method.key.clone(),
+                    m.method.name.clone(),
+                    m.color,
+                    Vec::new(),
+                    None,
+                )
+            })
             .collect()
     }
 
-    fn extend(&self, rows: &mut Rows, ks: std::ops::Range<usize>) {
-        for (m, pts, slope) in rows.iter_mut() {
-            pts.extend(errors_at(&self.spec, *m, ks.clone()));
-            *slope = fitted_slope(pts);
+    fn extend(&self, p: &Problem, truth: &[f64], rows: &mut Rows, ks: std::ops::Range<usize>) {
+        for (row, m) in rows.iter_mut().zip(self.methods.shown()) {
+            row.3.extend(errors_at(
+                &self.spec,
+                p,
+                truth,
+                m.method.scheme(),
+                ks.clone(),
+            ));
+            row.4 = fitted_slope(&row.3);
         }
     }
 
     /// Advances the cached study by one frame's budget; true when it is complete.
     fn advance(&mut self) -> bool {
-        let stale = !self.cache.as_ref().is_some_and(|(s, ..)| *s == self.spec);
+        let Some(p) = self.ode.problem().cloned() else {
+            self.cache = None;
+            return true;
+        };
+        let key = (
+            self.spec.clone(),
+            self.ode.revision(),
+            self.methods.switches(),
+        );
+        let stale = !self.cache.as_ref().is_some_and(|(k, ..)| *k == key);
         if stale {
-            self.cache = Some((self.spec.clone(), self.rows_empty(), 0));
+            let truth = truth(&p, self.spec.t_end);
+            self.cache = Some((key.clone(), self.rows_empty(), 0, truth));
         }
         let total = levels(&self.spec);
-        let per_level = |k| level_steps(&self.spec, k) * self.methods().len();
-        let (_, _, done) = self.cache.as_ref().expect("set above");
-        let mut end = *done;
+        let n_methods = self.methods.shown().count().max(1);
+        let per_level = |k| level_steps(&self.spec, p.t0, k) * n_methods;
+        let Some((_, mut rows, done, truth)) = self.cache.take() else {
+            return true;
+        };
+        let mut end = done;
         let mut budget = 0;
-        while end < total && (end == *done || budget + per_level(end) <= STEPS_PER_FRAME) {
+        while end < total && (end == done || budget + per_level(end) <= STEPS_PER_FRAME) {
             budget += per_level(end);
             end += 1;
         }
-        let start = *done;
-        let (_, mut rows, _) = self.cache.take().expect("set above");
-        self.extend(&mut rows, start..end);
-        self.cache = Some((self.spec.clone(), rows, end));
+        self.extend(&p, &truth, &mut rows, done..end);
+        self.cache = Some((key, rows, end, truth));
         end == total
-    }
-
-    fn methods(&self) -> Vec<MethodId> {
-        let mut ms = self.spec.methods.clone();
-        if self.spec.typo && !ms.contains(&MethodId::Rk4Typo) {
-            ms.push(MethodId::Rk4Typo);
-        }
-        ms.retain(|m| *m != MethodId::Exact);
-        ms
     }
 }
 
@@ -170,42 +204,38 @@ pub fn log_axes_plot<'a>(id: &str, x_label: &str, y_label: &str) -> Plot<'a> {
 impl SlideWidget for Convergence {
     fn ui(&mut self, ui: &mut egui::Ui) {
         style::projector_text(ui);
-        ui.horizontal(|ui| {
+        ui.horizontal_wrapped(|ui| {
             ui.add(
                 egui::Slider::new(&mut self.spec.h_max, 0.05..=1.0)
                     .logarithmic(true)
                     .text("largest h"),
             );
             ui.add(egui::Slider::new(&mut self.spec.levels, 3..=12).text("halvings"));
-            ui.checkbox(
-                &mut self.spec.typo,
-                egui::RichText::new("notes' RK4 typo")
-                    .color(style::RK4_TYPO)
-                    .strong(),
-            );
+            self.methods.toggles_ui(ui);
         });
+        style::problems_ui(ui, self.ode.load_error(), &self.methods.errors);
         if !self.advance() {
             ui.ctx().request_repaint();
         }
-        let Some((_, data, _)) = &self.cache else {
+        let label = self.ode.label();
+        let Some((_, data, _, _)) = &self.cache else {
             return;
         };
         ui.horizontal(|ui| {
             ui.label(format!(
-                "{}, error at t = {}:  slope =",
-                self.spec.field.label(),
+                "{label}, error at t = {}:  slope =",
                 fmt_num(self.spec.t_end)
             ));
-            for (m, _, s) in data {
+            for (_, name, color, _, s) in data {
                 let txt = s
-                    .map(|s| format!("{} {:.2}", m.name(), s))
-                    .unwrap_or_else(|| format!("{} –", m.name()));
-                ui.colored_label(style::method_color(*m), egui::RichText::new(txt).strong());
+                    .map(|s| format!("{name} {s:.2}"))
+                    .unwrap_or_else(|| format!("{name} –"));
+                ui.colored_label(*color, egui::RichText::new(txt).strong());
             }
         });
         let h_min = data
             .iter()
-            .flat_map(|d| d.1.iter().map(|p| p.0))
+            .flat_map(|d| d.3.iter().map(|p| p.0))
             .fold(f64::INFINITY, f64::min);
         let plot = log_axes_plot("convergence", "step h", "global error");
         let plot = if h_min.is_finite() {
@@ -214,24 +244,28 @@ impl SlideWidget for Convergence {
             plot
         };
         plot.show(ui, |p| {
-            for (m, pts, slope) in data {
-                let color = style::method_color(*m);
+            for (_, name, color, pts, slope) in data {
+                let color = *color;
                 let v: Vec<[f64; 2]> = pts
                     .iter()
                     .filter(|p| p.1 > 0.0)
                     .map(|p| [p.0.log10(), p.1.log10().max(-16.0)])
                     .collect();
                 p.line(
-                    Line::new(m.name(), v.clone())
+                    Line::new(name.as_str(), v.clone())
                         .color(color)
                         .width(style::PATH_WIDTH),
                 );
-                p.points(Points::new(m.name(), v.clone()).color(color).radius(5.0));
+                p.points(
+                    Points::new(name.as_str(), v.clone())
+                        .color(color)
+                        .radius(5.0),
+                );
                 // label at the smallest h, left of the line, in room the x range leaves for it
                 if let (Some(s), Some(last)) = (slope, v.last()) {
                     p.text(
                         Text::new(
-                            format!("{} slope", m.name()),
+                            format!("{name} slope"),
                             PlotPoint::new(last[0], last[1]),
                             egui::RichText::new(format!("slope {s:.2}  "))
                                 .size(22.0)
@@ -246,49 +280,55 @@ impl SlideWidget for Convergence {
     }
 
     fn params(&mut self) -> Vec<Param<'_>> {
-        vec![
+        let mut v = vec![
             Param::f64_log("h_max", "largest h", &mut self.spec.h_max, 0.05, 1.0),
             Param::usize("levels", "halvings", &mut self.spec.levels, 3, 12),
-            Param::bool("typo", "notes' RK4 typo", &mut self.spec.typo),
-        ]
+        ];
+        v.extend(self.methods.params());
+        v.extend(self.ode.params());
+        v
     }
 
-    spec_plumbing!(Convergence);
+    fn reset(&mut self) {
+        self.spec = self.initial.clone();
+        self.methods.reset();
+        self.ode.reset();
+    }
+
+    fn spec(&self) -> WidgetSpec {
+        WidgetSpec::Convergence(self.spec.clone())
+    }
+
+    fn ode(&mut self) -> Option<&mut LiveOde> {
+        Some(&mut self.ode)
+    }
+
+    fn problems(&self) -> Vec<String> {
+        style::problem_lines(self.ode.load_error(), &self.methods.errors)
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::deck::widgets::Field1;
 
     #[test]
     fn measured_slopes_are_the_orders_and_the_typo_drops_to_one() {
-        let spec = ConvergenceSpec {
-            field: Field1::Forced,
-            x0: 1.5,
-            t_end: 4.0,
-            h_max: 0.25,
-            levels: 6,
-            methods: vec![MethodId::Euler, MethodId::Midpoint, MethodId::Rk4],
-            typo: true,
-        };
-        let c = Convergence::new(spec).compute();
-        let slope = |m: MethodId| c.iter().find(|e| e.0 == m).unwrap().2.unwrap();
-        assert!(
-            (slope(MethodId::Euler) - 1.0).abs() < 0.15,
-            "{}",
-            slope(MethodId::Euler)
-        );
-        assert!((slope(MethodId::Midpoint) - 2.0).abs() < 0.15);
-        assert!(
-            (slope(MethodId::Rk4) - 4.0).abs() < 0.25,
-            "{}",
-            slope(MethodId::Rk4)
-        );
-        assert!(
-            (slope(MethodId::Rk4Typo) - 1.0).abs() < 0.25,
-            "{}",
-            slope(MethodId::Rk4Typo)
-        );
+        let deck = FsPath::new(concat!(env!("CARGO_MANIFEST_DIR"), "/slides/lecture.ron"));
+        let spec = ron::from_str(
+            "(ode: File(\"problems/forced.ron\"), t_end: 4.0, h_max: 0.25, levels: 6, \
+             methods: [Euler, Midpoint, Rk4, Tableau(\"tableaux/rk4-typo.ron\")])",
+        )
+        .unwrap();
+        let c = Convergence::new(spec, Some(deck)).compute();
+        let slope = |k: &str| c.iter().find(|e| e.0 == k).unwrap().4.unwrap();
+        for (k, want, tol) in [
+            ("euler", 1.0, 0.15),
+            ("midpoint", 2.0, 0.15),
+            ("rk4", 4.0, 0.25),
+            ("rk4-typo", 1.0, 0.25),
+        ] {
+            assert!((slope(k) - want).abs() < tol, "{k}: {}", slope(k));
+        }
     }
 }

@@ -2,49 +2,13 @@
 //! `Tableau` through `ode::solve_tableau`), and drawable fixed-step paths that stop cleanly when
 //! a solution blows up (`Outcome::Diverged`).
 
+use std::path::Path as FsPath;
 use std::sync::OnceLock;
 
-pub use crate::deck::widgets::MethodId;
-use crate::ode::{Method, Outcome, Scheme, Solution, System, Tableau, solve_fixed, solve_tableau};
-
-impl MethodId {
-    pub const INTEGRATORS: [MethodId; 3] = [MethodId::Euler, MethodId::Midpoint, MethodId::Rk4];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            MethodId::Euler => "Euler",
-            MethodId::Midpoint => "Midpoint",
-            MethodId::Heun => "Heun",
-            MethodId::Rk4 => "RK4",
-            MethodId::Rk4Typo => "RK4 (notes' typo)",
-            MethodId::Exact => "exact",
-        }
-    }
-
-    /// The Butcher tableau; `None` for `Exact`.
-    pub fn tableau(self) -> Option<Tableau> {
-        Some(match self {
-            MethodId::Euler => Tableau::euler(),
-            MethodId::Midpoint => Tableau::midpoint(),
-            MethodId::Heun => Tableau::heun(),
-            MethodId::Rk4 => Tableau::rk4(),
-            MethodId::Rk4Typo => rk4_typo().clone(),
-            MethodId::Exact => return None,
-        })
-    }
-
-    /// Theoretical order of accuracy.
-    pub fn order(self) -> u32 {
-        match self {
-            MethodId::Euler => 1,
-            MethodId::Midpoint | MethodId::Heun => 2,
-            MethodId::Rk4 => 4,
-            // Σ bᵢcᵢ = 5/12 ≠ 1/2 with the typo: not even second order.
-            MethodId::Rk4Typo => 1,
-            MethodId::Exact => u32::MAX,
-        }
-    }
-}
+use super::params::{Param, WriteTo};
+use super::style;
+use crate::deck::widgets::{MethodRef, ResolvedMethod};
+use crate::ode::{Outcome, Scheme, Solution, System, Tableau, solve_fixed, solve_tableau};
 
 /// RK4 as the notes print it: the last stage samples at `x0 + k3/2` (ERRATA 1), from the
 /// numerics core (`slides/tableaux/rk4-typo.ron` is the same tableau as a file).
@@ -53,17 +17,94 @@ pub fn rk4_typo() -> &'static Tableau {
     TYPO.get_or_init(Tableau::rk4_typo)
 }
 
-impl MethodId {
-    /// The integrator in the numerics core; `None` for `Exact`.
-    pub fn scheme(self) -> Option<Scheme<'static>> {
-        Some(match self {
-            MethodId::Euler => Scheme::Method(Method::Euler),
-            MethodId::Midpoint => Scheme::Method(Method::Midpoint),
-            MethodId::Heun => Scheme::Method(Method::Heun),
-            MethodId::Rk4 => Scheme::Method(Method::Rk4),
-            MethodId::Rk4Typo => Scheme::Tableau(rk4_typo()),
-            MethodId::Exact => return None,
-        })
+/// Whether `t` has the coefficients of the notes' RK4 typo (whatever the file named it).
+pub fn is_rk4_typo(t: &Tableau) -> bool {
+    let typo = rk4_typo();
+    let close = |x: &[f64], y: &[f64]| {
+        x.len() == y.len() && x.iter().zip(y).all(|(a, b)| (a - b).abs() <= 1e-12)
+    };
+    close(&t.b, &typo.b)
+        && close(&t.c, &typo.c)
+        && t.a.len() == typo.a.len()
+        && t.a.iter().zip(&typo.a).all(|(x, y)| close(x, y))
+}
+
+/// One method of a widget: runnable, coloured, and switched on or off live.
+pub struct MethodEntry {
+    pub method: ResolvedMethod,
+    pub color: egui::Color32,
+    pub shown: bool,
+}
+
+/// A widget's `methods:` list made runnable. Tableau files that do not load are left out and
+/// named in `errors` (the widget shows them; the rest still draws).
+pub struct MethodSet {
+    pub entries: Vec<MethodEntry>,
+    pub errors: Vec<String>,
+}
+
+impl MethodSet {
+    pub fn new(refs: &[MethodRef], deck_path: Option<&FsPath>) -> Self {
+        let mut entries = Vec::new();
+        let mut errors = Vec::new();
+        let mut extra = 0;
+        for r in refs {
+            match r.resolve(deck_path) {
+                Ok(method) => {
+                    let color = match method.builtin() {
+                        Some(_) => style::method_color(&method.key),
+                        None if is_rk4_typo(&method.tableau) => style::RK4_TYPO,
+                        None => {
+                            extra += 1;
+                            style::EXTRA_COLORS[(extra - 1) % style::EXTRA_COLORS.len()]
+                        }
+                    };
+                    entries.push(MethodEntry {
+                        method,
+                        color,
+                        shown: true,
+                    });
+                }
+                Err(e) => errors.push(e),
+            }
+        }
+        Self { entries, errors }
+    }
+
+    /// The methods switched on, in the deck's order.
+    pub fn shown(&self) -> impl Iterator<Item = &MethodEntry> {
+        self.entries.iter().filter(|e| e.shown)
+    }
+
+    /// Which are on, for cache keys.
+    pub fn switches(&self) -> Vec<bool> {
+        self.entries.iter().map(|e| e.shown).collect()
+    }
+
+    /// All on again (`R`).
+    pub fn reset(&mut self) {
+        self.entries.iter_mut().for_each(|e| e.shown = true);
+    }
+
+    /// One live switch per method, by its key (`euler`, `rk4-typo`); never written to the deck.
+    pub fn params(&mut self) -> Vec<Param<'_>> {
+        self.entries
+            .iter_mut()
+            .map(|e| {
+                Param::bool(e.method.key.clone(), e.method.name.clone(), &mut e.shown)
+                    .writing_to(WriteTo::Nowhere)
+            })
+            .collect()
+    }
+
+    /// One checkbox per method, labelled in its colour.
+    pub fn toggles_ui(&mut self, ui: &mut egui::Ui) {
+        for e in &mut self.entries {
+            ui.checkbox(
+                &mut e.shown,
+                egui::RichText::new(&e.method.name).color(e.color).strong(),
+            );
+        }
     }
 }
 
@@ -125,6 +166,41 @@ pub fn fixed_path<S: System + ?Sized>(
     Path::from_solution(&sol, bound)
 }
 
+/// The exact (or reference) path of a system, sampled finely for drawing.
+pub fn reference_path<S: System + ?Sized>(sys: &S, t0: f64, x0: &[f64], t_end: f64) -> Path {
+    let h = ((t_end - t0) / 2000.0).max(1e-6);
+    let n = steps_for(t0, t_end, h, 4000);
+    fixed_path(
+        sys,
+        Scheme::Method(crate::ode::Method::Rk4),
+        t0,
+        x0,
+        h,
+        n,
+        1e12,
+    )
+}
+
+/// The true state at `t` of the solution through `(t0, x0)`: the problem's exact solution, or
+/// else `reference` (when it ends at `t`) or a fine RK4 solve to `t`.
+pub fn truth_at(
+    p: &crate::ode::problem::Problem,
+    t0: f64,
+    x0: &[f64],
+    t: f64,
+    reference: &Path,
+) -> Vec<f64> {
+    if let Some(x) = p.exact_from(t0, x0, t) {
+        return x;
+    }
+    let ref_end = *reference.ts.last().unwrap_or(&t0);
+    if (t - ref_end).abs() <= 1e-9 * t.abs().max(1.0) && !reference.xs.is_empty() {
+        reference.last().to_vec()
+    } else {
+        reference_path(p, t0, x0, t).last().to_vec()
+    }
+}
+
 /// At most this many points of a path are drawn: a plot line is a few hundred pixels wide, and
 /// tessellating 20 000 points every frame stalls the software renderer.
 pub const MAX_DRAWN_POINTS: usize = 2048;
@@ -159,7 +235,7 @@ pub fn steps_for(t0: f64, t_end: f64, h: f64, cap: usize) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ode::FnSystem;
+    use crate::ode::{FnSystem, Method};
 
     #[test]
     fn decimate_bounds_the_count_and_keeps_both_ends() {
@@ -177,22 +253,23 @@ mod tests {
     }
 
     #[test]
-    fn typo_rk4_is_only_second_order() {
+    fn typo_rk4_is_only_first_order() {
         // Error ratio when halving h on x' = x: 2^order.
         let sys = FnSystem::new(1, |_t, x: &[f64], d: &mut [f64]| d[0] = x[0]);
-        let err = |m: MethodId, h: f64| {
+        let err = |scheme: Scheme<'_>, h: f64| {
             let n = steps_for(0.0, 1.0, h, 1 << 20);
-            let p = fixed_path(&sys, m.scheme().unwrap(), 0.0, &[1.0], h, n, 1e9);
+            let p = fixed_path(&sys, scheme, 0.0, &[1.0], h, n, 1e9);
             (p.last()[0] - 1f64.exp()).abs()
         };
-        for m in [
-            MethodId::Euler,
-            MethodId::Midpoint,
-            MethodId::Rk4,
-            MethodId::Rk4Typo,
-        ] {
+        let cases = [
+            (Scheme::Method(Method::Euler), 1.0),
+            (Scheme::Method(Method::Midpoint), 2.0),
+            (Scheme::Method(Method::Rk4), 4.0),
+            (Scheme::Tableau(rk4_typo()), 1.0),
+        ];
+        for (m, want) in cases {
             let order = (err(m, 0.02) / err(m, 0.01)).log2();
-            assert!((order - m.order() as f64).abs() < 0.2, "{m:?}: {order}");
+            assert!((order - want).abs() < 0.2, "{}: {order}", m.label());
         }
     }
 
@@ -201,7 +278,7 @@ mod tests {
         let sys = FnSystem::new(1, |_t, x: &[f64], d: &mut [f64]| d[0] = -50.0 * x[0]);
         let p = fixed_path(
             &sys,
-            MethodId::Euler.scheme().unwrap(),
+            Scheme::Method(Method::Euler),
             0.0,
             &[1.0],
             0.1,

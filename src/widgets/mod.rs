@@ -21,10 +21,10 @@ macro_rules! spec_plumbing {
 }
 
 pub mod convergence;
+pub mod live_ode;
 pub mod methods;
 pub mod neptune;
 pub mod params;
-pub mod problems;
 pub mod rigid_body;
 pub mod slope_field;
 pub mod spiral;
@@ -34,8 +34,9 @@ pub mod style;
 pub mod taylor;
 pub mod work_precision;
 
-pub use crate::deck::widgets::{MethodId, WidgetSpec};
-pub use params::{Param, ParamSnapshot, ParamValue};
+pub use crate::deck::widgets::{MethodRef, WidgetSpec};
+pub use live_ode::{ExprSlot, LiveOde};
+pub use params::{Param, ParamSnapshot, ParamValue, WriteTo};
 
 /// A widget's live state; created from its spec, kept while the slide is on screen.
 pub trait SlideWidget: Send {
@@ -47,27 +48,70 @@ pub trait SlideWidget: Send {
     fn reset(&mut self);
     /// The current values as a spec, to write back to the deck file.
     fn spec(&self) -> WidgetSpec;
+    /// The widget's equation, live (parameters, typed expressions), if it draws an ODE.
+    fn ode(&mut self) -> Option<&mut LiveOde> {
+        None
+    }
+    /// Why the widget cannot draw all it should (its equation or a tableau file did not load).
+    fn problems(&self) -> Vec<String> {
+        Vec::new()
+    }
+    /// Every computed point of its paths (not the decimated draw data), for `export --data`.
+    fn data(&mut self) -> Option<PlotData> {
+        None
+    }
+}
+
+/// The paths a plot widget computed, by series (`euler`, `rk4`, `exact`, a tableau's stem).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct PlotData {
+    pub vars: Vec<String>,
+    pub series: Vec<(String, methods::Path)>,
+}
+
+impl PlotData {
+    /// Long-format CSV: the header `series,t,<var1>[,<var2>…]`, one row per computed point,
+    /// numbers in Rust's shortest round-trip form (read back, they are the same f64).
+    pub fn to_csv(&self) -> String {
+        use std::fmt::Write;
+        let mut out = format!("series,t,{}\n", self.vars.join(","));
+        for (name, path) in &self.series {
+            for (t, x) in path.ts.iter().zip(&path.xs) {
+                let _ = write!(out, "{name},{t:?}");
+                for v in x {
+                    let _ = write!(out, ",{v:?}");
+                }
+                out.push('\n');
+            }
+        }
+        out
+    }
 }
 
 impl WidgetSpec {
-    pub fn instantiate(&self) -> Box<dyn SlideWidget> {
-        self.instantiate_in(None)
-    }
-
-    /// Like [`instantiate`](Self::instantiate), resolving files the spec names (tableaux)
-    /// against `base_dir`, the deck's folder.
-    pub fn instantiate_in(&self, base_dir: Option<&std::path::Path>) -> Box<dyn SlideWidget> {
+    /// The widget, its files (problem and tableau files) resolved relative to the deck at
+    /// `deck_path` (or the current folder).
+    pub fn instantiate_in(&self, deck_path: Option<&std::path::Path>) -> Box<dyn SlideWidget> {
         match self {
-            WidgetSpec::SlopeField(s) => Box::new(slope_field::SlopeField::new(s.clone())),
-            WidgetSpec::StepConstruction(s) => {
-                Box::new(step_construction::StepConstruction::new(s.clone()))
+            WidgetSpec::SlopeField(s) => {
+                Box::new(slope_field::SlopeField::new(s.clone(), deck_path))
             }
-            WidgetSpec::Spiral(s) => Box::new(spiral::Spiral::new(s.clone())),
-            WidgetSpec::Neptune(s) => Box::new(neptune::Neptune::new(s.clone())),
+            WidgetSpec::StepConstruction(s) => Box::new(step_construction::StepConstruction::new(
+                s.clone(),
+                deck_path,
+            )),
+            WidgetSpec::Spiral(s) => Box::new(spiral::Spiral::new(s.clone(), deck_path)),
+            WidgetSpec::Neptune(s) => Box::new(neptune::Neptune::new(s.clone(), deck_path)),
             WidgetSpec::Taylor(s) => Box::new(taylor::Taylor::new(s.clone())),
-            WidgetSpec::Convergence(s) => Box::new(convergence::Convergence::new(s.clone())),
-            WidgetSpec::WorkPrecision(s) => Box::new(work_precision::WorkPrecision::new(s.clone())),
-            WidgetSpec::Stability(s) => Box::new(stability::Stability::new_in(s.clone(), base_dir)),
+            WidgetSpec::Convergence(s) => {
+                Box::new(convergence::Convergence::new(s.clone(), deck_path))
+            }
+            WidgetSpec::WorkPrecision(s) => {
+                Box::new(work_precision::WorkPrecision::new(s.clone(), deck_path))
+            }
+            WidgetSpec::Stability(s) => {
+                Box::new(stability::Stability::new_in(s.clone(), deck_path))
+            }
             WidgetSpec::RigidBody(s) => Box::new(rigid_body::RigidBodyView::new(s.clone())),
         }
     }

@@ -1,41 +1,48 @@
-//! 4. Instability, "off to Neptune": y' = λy (or the oscillator x'' = −x) integrated with `h`
-//! on either side of a method's stability limit. The axes stay clamped to the true solution's
-//! scale; a path that leaves them ends in a red "diverged" marker, never NaN or a crash.
+//! 4. Instability, "off to Neptune": y' = λy (or the oscillator x'' = −x, or any ODE) integrated
+//! with `h` on either side of a method's stability limit. The axes stay clamped to the true
+//! solution's scale; a path that leaves them ends in a red "diverged" marker, never NaN or a
+//! crash. The printed limits use λ, the eigenvalue of the equation's Jacobian at the start with
+//! the largest modulus (exact for y' = λy and the oscillator's ±i).
 
 use egui_plot::{Line, MarkerShape, Plot, PlotPoint, Points, Text};
 
-use super::methods::{MethodId, Path, fixed_path, steps_for};
+use std::path::Path as FsPath;
+
+use super::live_ode::LiveOde;
+use super::methods::{MethodSet, Path, fixed_path, reference_path, steps_for};
 use super::stability::{C, stable_h_limit};
 use super::style::{self, fmt_num};
-use super::{Param, SlideWidget};
-use crate::deck::widgets::{Field1, Field2, NeptuneProblem, NeptuneSpec};
+use super::{Param, PlotData, SlideWidget};
+use crate::deck::widgets::{NeptuneSpec, WidgetSpec};
+use crate::ode::System;
+use crate::ode::problem::Problem;
 
 const H_RANGE: (f64, f64) = (0.01, 3.5);
-/// The view shows |y| up to this multiple of the initial value.
+/// The view shows |y| up to this multiple of the initial value (of 1 when it starts at 0).
 const CLAMP: f64 = 2.5;
 
-/// A path clipped to |y| ≤ CLAMP: the visible points and, if it left, where.
-pub fn clip(path: &Path) -> (Vec<[f64; 2]>, Option<[f64; 2]>) {
+/// A path clipped to |y| ≤ clamp: the visible points and, if it left, where.
+pub fn clip(path: &Path, clamp: f64) -> (Vec<[f64; 2]>, Option<[f64; 2]>) {
     let mut pts: Vec<[f64; 2]> = Vec::with_capacity(path.ts.len());
     for (t, x) in path.ts.iter().zip(&path.xs) {
         let y = x[0];
-        if y.abs() > CLAMP {
+        if y.abs() > clamp {
             if let Some(&[tp, yp]) = pts.last() {
                 // cut the segment where it crosses the clamp line
-                let edge = CLAMP * y.signum();
+                let edge = clamp * y.signum();
                 let s = (edge - yp) / (y - yp);
                 let exit = [tp + s * (t - tp), edge];
                 pts.push(exit);
                 return (pts, Some(exit));
             }
-            return (pts, Some([*t, CLAMP * y.signum()]));
+            return (pts, Some([*t, clamp * y.signum()]));
         }
         pts.push([*t, y]);
     }
     let exit = path.diverged_at.map(|t| {
         [
             t,
-            CLAMP * path.last().first().copied().unwrap_or(1.0).signum(),
+            clamp * path.last().first().copied().unwrap_or(1.0).signum(),
         ]
     });
     (pts, exit)
@@ -44,61 +51,87 @@ pub fn clip(path: &Path) -> (Vec<[f64; 2]>, Option<[f64; 2]>) {
 pub struct Neptune {
     pub spec: NeptuneSpec,
     initial: NeptuneSpec,
+    ode: LiveOde,
+    methods: MethodSet,
+}
+
+/// The eigenvalue of largest modulus of f's Jacobian at (t, x) (central differences), with a
+/// non-negative imaginary part; for one or two variables (`None` beyond).
+pub fn dominant_eigenvalue(p: &Problem, t: f64, x: &[f64]) -> Option<C> {
+    let n = p.dim();
+    if n > 2 {
+        return None;
+    }
+    let mut jac = [[0.0; 2]; 2];
+    let (mut up, mut down) = (vec![0.0; n], vec![0.0; n]);
+    for j in 0..n {
+        let e = 1e-6 * x[j].abs().max(1.0);
+        let mut xp = x.to_vec();
+        xp[j] += e;
+        p.rhs(t, &xp, &mut up);
+        xp[j] -= 2.0 * e;
+        p.rhs(t, &xp, &mut down);
+        for i in 0..n {
+            jac[i][j] = (up[i] - down[i]) / (2.0 * e);
+        }
+    }
+    if n == 1 {
+        return jac[0][0].is_finite().then_some(C(jac[0][0], 0.0));
+    }
+    let half_tr = 0.5 * (jac[0][0] + jac[1][1]);
+    let det = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
+    let disc = half_tr * half_tr - det;
+    let l = if disc >= 0.0 {
+        let r = disc.sqrt();
+        // the real root of larger modulus
+        if (half_tr + r).abs() >= (half_tr - r).abs() {
+            C(half_tr + r, 0.0)
+        } else {
+            C(half_tr - r, 0.0)
+        }
+    } else {
+        C(half_tr, (-disc).sqrt())
+    };
+    (l.0.is_finite() && l.1.is_finite()).then_some(l)
 }
 
 impl Neptune {
-    pub fn new(spec: NeptuneSpec) -> Self {
+    pub fn new(spec: NeptuneSpec, deck_path: Option<&FsPath>) -> Self {
         Self {
+            ode: LiveOde::new(&spec.ode, deck_path),
+            methods: MethodSet::new(&spec.methods, deck_path),
             initial: spec.clone(),
             spec,
         }
     }
 
-    fn shown(&self) -> Vec<MethodId> {
-        let s = &self.spec;
-        [
-            (s.euler, MethodId::Euler),
-            (s.midpoint, MethodId::Midpoint),
-            (s.rk4, MethodId::Rk4),
-        ]
-        .into_iter()
-        .filter_map(|(on, m)| on.then_some(m))
-        .collect()
+    /// λ of the test equation the problem reduces to near its start.
+    pub fn lambda(&mut self) -> Option<C> {
+        let p = self.ode.problem()?;
+        dominant_eigenvalue(p, p.t0, &p.initial)
     }
 
-    /// λ of the test equation the problem reduces to (the oscillator's eigenvalues are ±i).
-    pub fn lambda(&self) -> C {
-        match self.spec.problem {
-            NeptuneProblem::Decay { lambda } => C(lambda, 0.0),
-            NeptuneProblem::Oscillator => C(0.0, 1.0),
-        }
-    }
-
-    pub fn path(&self, m: MethodId) -> Path {
+    /// The path of every method switched on: (key, name, colour, path).
+    pub fn paths(&mut self) -> Vec<(String, String, egui::Color32, Path)> {
+        let Some(p) = self.ode.problem().cloned() else {
+            return Vec::new();
+        };
         let h = self.spec.h.clamp(H_RANGE.0, H_RANGE.1);
-        let n = steps_for(0.0, self.spec.t_end, h, 10_000);
-        let tab = m.scheme().unwrap();
-        match self.spec.problem {
-            NeptuneProblem::Decay { lambda } => fixed_path(
-                &Field1::Decay { k: -lambda }.system(),
-                tab,
-                0.0,
-                &[1.0],
-                h,
-                n,
-                1e6,
-            ),
-            NeptuneProblem::Oscillator => {
-                fixed_path(&Field2::Circle.system(), tab, 0.0, &[1.0, 0.0], h, n, 1e6)
-            }
-        }
+        let t_end = self.spec.t_end;
+        let n = steps_for(p.t0, t_end, h, 10_000);
+        self.methods
+            .shown()
+            .map(|m| {
+                let path = fixed_path(&p, m.method.scheme(), p.t0, &p.initial, h, n, 1e6);
+                (m.method.key.clone(), m.method.name.clone(), m.color, path)
+            })
+            .collect()
     }
 
-    fn exact(&self, t: f64) -> f64 {
-        match self.spec.problem {
-            NeptuneProblem::Decay { lambda } => (lambda * t).exp(),
-            NeptuneProblem::Oscillator => t.cos(),
-        }
+    /// |y| the view holds: CLAMP times the initial value.
+    fn clamp(p: &Problem) -> f64 {
+        let y0 = p.initial[0].abs();
+        CLAMP * if y0 > 0.0 { y0 } else { 1.0 }
     }
 }
 
@@ -111,61 +144,72 @@ impl SlideWidget for Neptune {
         let lambda = self.lambda();
         ui.horizontal(|ui| {
             style::h_slider(ui, &mut self.spec.h, H_RANGE);
-            style::method_toggles(
-                ui,
-                [
-                    (&mut self.spec.euler, MethodId::Euler),
-                    (&mut self.spec.midpoint, MethodId::Midpoint),
-                    (&mut self.spec.rk4, MethodId::Rk4),
-                ],
-            );
+            self.methods.toggles_ui(ui);
         });
-        let shown = self.shown();
-        ui.horizontal(|ui| {
-            ui.label("stable for h <");
-            for &m in &shown {
-                let lim = stable_h_limit(&m.tableau().unwrap(), lambda, 10.0);
-                let txt = if lim == 0.0 {
-                    format!("{}: never", m.name())
-                } else {
-                    format!("{}: {}", m.name(), fmt_num(lim))
-                };
-                ui.colored_label(style::method_color(m), egui::RichText::new(txt).strong());
-            }
-        });
-        let t_end = self.spec.t_end;
-        let exact: Vec<[f64; 2]> = (0..=400)
-            .map(|i| {
-                let t = t_end * i as f64 / 400.0;
-                [t, self.exact(t)]
-            })
+        style::problems_ui(ui, self.ode.load_error(), &self.methods.errors);
+        let Some(p) = self.ode.problem().cloned() else {
+            return;
+        };
+        if let Some(lambda) = lambda {
+            ui.horizontal(|ui| {
+                ui.label("stable for h <");
+                for m in self.methods.shown() {
+                    let lim = stable_h_limit(&m.method.tableau, lambda, 10.0);
+                    let txt = if lim == 0.0 {
+                        format!("{}: never", m.method.name)
+                    } else {
+                        format!("{}: {}", m.method.name, fmt_num(lim))
+                    };
+                    ui.colored_label(m.color, egui::RichText::new(txt).strong());
+                }
+            });
+        }
+        let clamp = Self::clamp(&p);
+        let t0 = p.t0;
+        let t_end = self.spec.t_end.max(t0 + 1e-9);
+        let exact: Vec<[f64; 2]> = if p.has_exact() {
+            (0..=400)
+                .filter_map(|i| {
+                    let t = t0 + (t_end - t0) * i as f64 / 400.0;
+                    p.exact(t).map(|x| [t, x[0]])
+                })
+                .collect()
+        } else {
+            let r = reference_path(&p, t0, &p.initial, t_end);
+            r.ts.iter().zip(&r.xs).map(|(t, x)| [*t, x[0]]).collect()
+        };
+        let paths: Vec<_> = self
+            .paths()
+            .into_iter()
+            .map(|(_, name, color, path)| (name, color, clip(&path, clamp)))
             .collect();
-        let paths: Vec<_> = shown.iter().map(|&m| (m, clip(&self.path(m)))).collect();
+        let y_name = p.vars[0].clone();
         Plot::new("neptune")
             .allow_drag(false)
             .allow_zoom(false)
             .allow_scroll(false)
             .x_axis_label("t")
-            .y_axis_label(match self.spec.problem {
-                NeptuneProblem::Decay { .. } => "y",
-                NeptuneProblem::Oscillator => "x",
-            })
-            .default_x_bounds(0.0, t_end)
-            .default_y_bounds(-CLAMP * 1.1, CLAMP * 1.1)
+            .y_axis_label(y_name)
+            .default_x_bounds(t0, t_end)
+            .default_y_bounds(-clamp * 1.1, clamp * 1.1)
             .show(ui, |p| {
                 p.set_plot_bounds(egui_plot::PlotBounds::from_min_max(
-                    [0.0, -CLAMP * 1.1],
-                    [t_end, CLAMP * 1.1],
+                    [t0, -clamp * 1.1],
+                    [t_end, clamp * 1.1],
                 ));
                 p.line(Line::new("exact", exact).color(ink).width(2.0));
-                for (m, (pts, exit)) in &paths {
-                    let color = style::method_color(*m);
+                for (name, color, (pts, exit)) in &paths {
+                    let color = *color;
                     p.line(
-                        Line::new(m.name(), pts.clone())
+                        Line::new(name.as_str(), pts.clone())
                             .color(color)
                             .width(style::PATH_WIDTH),
                     );
-                    p.points(Points::new(m.name(), pts.clone()).color(color).radius(3.0));
+                    p.points(
+                        Points::new(name.as_str(), pts.clone())
+                            .color(color)
+                            .radius(3.0),
+                    );
                     if let Some(e) = exit {
                         p.points(
                             Points::new("diverged", vec![*e])
@@ -186,14 +230,11 @@ impl SlideWidget for Neptune {
                         p.text(
                             Text::new(
                                 "diverged",
-                                PlotPoint::new(e[0] + 0.05 * t_end, e[1]),
-                                egui::RichText::new(format!(
-                                    "{} diverged: off to Neptune!",
-                                    m.name()
-                                ))
-                                .size(22.0)
-                                .strong()
-                                .color(style::DIVERGED),
+                                PlotPoint::new(e[0] + 0.05 * (t_end - t0), e[1]),
+                                egui::RichText::new(format!("{name} diverged: off to Neptune!"))
+                                    .size(22.0)
+                                    .strong()
+                                    .color(style::DIVERGED),
                             )
                             .anchor(anchor),
                         );
@@ -203,41 +244,83 @@ impl SlideWidget for Neptune {
     }
 
     fn params(&mut self) -> Vec<Param<'_>> {
-        vec![
-            Param::f64_log("h", "step h", &mut self.spec.h, H_RANGE.0, H_RANGE.1),
-            Param::bool("euler", "Euler", &mut self.spec.euler),
-            Param::bool("midpoint", "Midpoint", &mut self.spec.midpoint),
-            Param::bool("rk4", "RK4", &mut self.spec.rk4),
-        ]
+        let mut v = vec![Param::f64_log(
+            "h",
+            "step h",
+            &mut self.spec.h,
+            H_RANGE.0,
+            H_RANGE.1,
+        )];
+        v.extend(self.methods.params());
+        v.extend(self.ode.params());
+        v
     }
 
-    spec_plumbing!(Neptune);
+    fn reset(&mut self) {
+        self.spec = self.initial.clone();
+        self.methods.reset();
+        self.ode.reset();
+    }
+
+    fn spec(&self) -> WidgetSpec {
+        WidgetSpec::Neptune(self.spec.clone())
+    }
+
+    fn ode(&mut self) -> Option<&mut LiveOde> {
+        Some(&mut self.ode)
+    }
+
+    fn problems(&self) -> Vec<String> {
+        style::problem_lines(self.ode.load_error(), &self.methods.errors)
+    }
+
+    fn data(&mut self) -> Option<PlotData> {
+        let vars = self.ode.problem()?.vars.clone();
+        let series = self
+            .paths()
+            .into_iter()
+            .map(|(k, _, _, p)| (k, p))
+            .collect();
+        Some(PlotData { vars, series })
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    fn spec(h: f64) -> NeptuneSpec {
-        NeptuneSpec {
-            problem: NeptuneProblem::Decay { lambda: -5.0 },
-            h,
-            t_end: 30.0,
-            euler: true,
-            midpoint: true,
-            rk4: true,
-        }
+    fn widget(h: f64) -> Neptune {
+        let deck = FsPath::new(concat!(env!("CARGO_MANIFEST_DIR"), "/slides/lecture.ron"));
+        let spec = format!("(ode: File(\"problems/decay.ron\"), h: {h}, t_end: 30.0)");
+        Neptune::new(ron::from_str(&spec).unwrap(), Some(deck))
     }
 
     #[test]
     fn euler_diverges_exactly_past_two_over_lambda() {
-        let below = Neptune::new(spec(0.39)).path(MethodId::Euler);
-        let above = Neptune::new(spec(0.41)).path(MethodId::Euler);
+        let mut below = widget(0.39);
+        let lambda = below.lambda().unwrap();
+        assert!(
+            (lambda.0 + 5.0).abs() < 1e-8 && lambda.1 == 0.0,
+            "{lambda:?}"
+        );
+        let below = below.paths().remove(0).3;
+        let above = widget(0.41).paths().remove(0).3;
         assert!(below.diverged_at.is_none() && below.last()[0].abs() < 1.0);
-        let (_, exit) = clip(&above);
+        let (_, exit) = clip(&above, CLAMP);
         assert!(exit.is_some(), "h above 2/|λ| must leave the clamped view");
-        let huge = Neptune::new(spec(3.5)).path(MethodId::Euler);
-        let (pts, _) = clip(&huge);
+        let huge = widget(3.5).paths().remove(0).3;
+        let (pts, _) = clip(&huge, CLAMP);
         assert!(pts.iter().all(|p| p[0].is_finite() && p[1].abs() <= CLAMP));
+    }
+
+    #[test]
+    fn the_oscillators_eigenvalues_are_plus_minus_i() {
+        let p = Problem::load(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/slides/problems/circle.ron"
+        ))
+        .unwrap();
+        let l = dominant_eigenvalue(&p, 0.0, &p.initial).unwrap();
+        assert!(l.0.abs() < 1e-9 && (l.1 - 1.0).abs() < 1e-9, "{l:?}");
     }
 }

@@ -21,11 +21,24 @@ pub enum ParamValue<'a> {
 }
 
 /// One named parameter. `id` is stable (it is the field name in the deck file, e.g. `"h"` or
-/// `"x0.1"`); `label` is for people.
+/// `"start.1"`, or the name of an ODE parameter, `"k"`); `label` is for people.
 pub struct Param<'a> {
-    pub id: &'static str,
-    pub label: &'static str,
+    pub id: String,
+    pub label: String,
     pub value: ParamValue<'a>,
+    /// Where Ctrl+S writes the value.
+    pub write: WriteTo,
+}
+
+/// Where a parameter lives in the files, for write-back.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum WriteTo {
+    /// The widget's own field named by the id (`h`, `start.1`).
+    Spec,
+    /// Parameter `name` of the widget's ODE (`params: {"k": …}` inline, or in its problem file).
+    OdeParam(String),
+    /// Nowhere: a live-only switch (showing or hiding a method).
+    Nowhere,
 }
 
 /// A parameter's value detached from the widget, for keeping across reloads.
@@ -38,15 +51,16 @@ pub enum ParamSnapshot {
 
 impl<'a> Param<'a> {
     pub fn f64(
-        id: &'static str,
-        label: &'static str,
+        id: impl Into<String>,
+        label: impl Into<String>,
         value: &'a mut f64,
         min: f64,
         max: f64,
     ) -> Self {
         Self {
-            id,
-            label,
+            id: id.into(),
+            label: label.into(),
+            write: WriteTo::Spec,
             value: ParamValue::F64 {
                 value,
                 min,
@@ -56,15 +70,16 @@ impl<'a> Param<'a> {
         }
     }
     pub fn f64_log(
-        id: &'static str,
-        label: &'static str,
+        id: impl Into<String>,
+        label: impl Into<String>,
         value: &'a mut f64,
         min: f64,
         max: f64,
     ) -> Self {
         Self {
-            id,
-            label,
+            id: id.into(),
+            label: label.into(),
+            write: WriteTo::Spec,
             value: ParamValue::F64 {
                 value,
                 min,
@@ -73,25 +88,33 @@ impl<'a> Param<'a> {
             },
         }
     }
-    pub fn bool(id: &'static str, label: &'static str, value: &'a mut bool) -> Self {
+    pub fn bool(id: impl Into<String>, label: impl Into<String>, value: &'a mut bool) -> Self {
         Self {
-            id,
-            label,
+            id: id.into(),
+            label: label.into(),
+            write: WriteTo::Spec,
             value: ParamValue::Bool(value),
         }
     }
     pub fn usize(
-        id: &'static str,
-        label: &'static str,
+        id: impl Into<String>,
+        label: impl Into<String>,
         value: &'a mut usize,
         min: usize,
         max: usize,
     ) -> Self {
         Self {
-            id,
-            label,
+            id: id.into(),
+            label: label.into(),
+            write: WriteTo::Spec,
             value: ParamValue::Usize { value, min, max },
         }
+    }
+
+    /// The same parameter, written back to `write` instead of the spec field named by its id.
+    pub fn writing_to(mut self, write: WriteTo) -> Self {
+        self.write = write;
+        self
     }
 
     pub fn get(&self) -> ParamSnapshot {
@@ -136,11 +159,11 @@ impl<'a> Param<'a> {
             } => ui.add(
                 egui::Slider::new(&mut **value, *min..=*max)
                     .logarithmic(*log)
-                    .text(self.label),
+                    .text(self.label.as_str()),
             ),
-            ParamValue::Bool(v) => ui.checkbox(&mut **v, self.label),
+            ParamValue::Bool(v) => ui.checkbox(&mut **v, self.label.as_str()),
             ParamValue::Usize { value, min, max } => {
-                ui.add(egui::Slider::new(&mut **value, *min..=*max).text(self.label))
+                ui.add(egui::Slider::new(&mut **value, *min..=*max).text(self.label.as_str()))
             }
         }
     }
@@ -148,16 +171,13 @@ impl<'a> Param<'a> {
 
 /// All of a widget's parameter values by id.
 pub fn snapshot(w: &mut dyn super::SlideWidget) -> Vec<(String, ParamSnapshot)> {
-    w.params()
-        .iter()
-        .map(|p| (p.id.to_owned(), p.get()))
-        .collect()
+    w.params().iter().map(|p| (p.id.clone(), p.get())).collect()
 }
 
 /// Applies saved values by id; ids the widget no longer has are skipped (the deck changed).
 pub fn restore(w: &mut dyn super::SlideWidget, saved: &[(String, ParamSnapshot)]) {
     for mut p in w.params() {
-        if let Some((_, v)) = saved.iter().find(|(id, _)| id == p.id) {
+        if let Some((_, v)) = saved.iter().find(|(id, _)| *id == p.id) {
             let _ = p.set(*v);
         }
     }

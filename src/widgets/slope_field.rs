@@ -1,17 +1,23 @@
-//! 1. The slope field of ẋ = f(x, t) (t–x plane) or of a 2-D system (phase plane), with the
-//! Euler, midpoint, RK4 and exact paths over it. Click or drag to move the start point; `h` by
-//! slider or `-`/`+`; the global error of each method at the end of the interval is printed live.
+//! 1. The slope field of ẋ = f(x, t) (t–x plane) or of a system (phase plane of two of its
+//! variables), with the paths of the widget's methods and the exact solution over it. Click or
+//! drag to move the start point; `h` by slider or `-`/`+`; the equation's parameters by slider
+//! and its expressions by typing (presenter side); the global error of each method at the end
+//! of the interval is printed live.
+
+use std::path::Path as FsPath;
 
 use egui_plot::{Arrows, Line, Plot, PlotPoint, PlotPoints, Points};
 
+use super::live_ode::LiveOde;
 use super::methods::{
-    MAX_DRAWN_POINTS, MAX_STEP_MARKERS, MethodId, Path, decimate, fixed_path, steps_for,
+    MAX_DRAWN_POINTS, MAX_STEP_MARKERS, MethodSet, Path, decimate, fixed_path, reference_path,
+    steps_for, truth_at,
 };
-use super::problems::reference_path;
 use super::style::{self, fmt_num};
-use super::{Param, SlideWidget};
-use crate::deck::widgets::{FieldKind, SlopeFieldSpec};
+use super::{Param, PlotData, SlideWidget};
+use crate::deck::widgets::{SlopeFieldSpec, WidgetSpec};
 use crate::ode::System;
+use crate::ode::problem::Problem;
 
 const H_RANGE: (f64, f64) = (0.01, 2.0);
 const MAX_STEPS: usize = 20_000;
@@ -19,7 +25,8 @@ const MAX_STEPS: usize = 20_000;
 /// One method's solve reduced to what a frame needs: the full solve is used for the error
 /// and then dropped; only a decimated polyline (and the step markers when few) is kept.
 struct DrawnPath {
-    method: MethodId,
+    name: String,
+    color: egui::Color32,
     line: Vec<[f64; 2]>,
     /// every step, only when there are at most MAX_STEP_MARKERS of them
     markers: Vec<[f64; 2]>,
@@ -32,89 +39,112 @@ struct Computed {
     reference: Vec<[f64; 2]>,
 }
 
-/// The slope marks, keyed by what they depend on (not the start point or h).
-type MarksKey = (FieldKind, (f64, f64, f64, f64), usize);
+/// What the paths depend on: the spec, the equation's revision, the methods switched on.
+type Key = (SlopeFieldSpec, u64, Vec<bool>);
+/// The slope marks depend on the equation, the view, the grid and the plane only.
+type MarksKey = (u64, (f64, f64, f64, f64), usize, (usize, usize));
 type Marks = (Vec<[f64; 2]>, Vec<[f64; 2]>);
+
+/// One method's full solve: name, key, colour, path and global error at its end.
+pub struct MethodPath {
+    pub key: String,
+    pub name: String,
+    pub color: egui::Color32,
+    pub path: Path,
+    pub error: Option<f64>,
+}
 
 pub struct SlopeField {
     pub spec: SlopeFieldSpec,
     initial: SlopeFieldSpec,
-    cache: Option<(SlopeFieldSpec, Computed)>,
+    ode: LiveOde,
+    methods: MethodSet,
+    cache: Option<(Key, Computed)>,
     marks_cache: Option<(MarksKey, Marks)>,
 }
 
+/// Which two variables are drawn in the phase plane; `None` for a 1-D problem (t–x plane).
+fn plane(spec: &SlopeFieldSpec, p: &Problem) -> Option<(usize, usize)> {
+    if p.vars.len() < 2 {
+        return None;
+    }
+    let find = |n: &str| p.vars.iter().position(|v| v == n);
+    Some(match &spec.plot {
+        Some((a, b)) => (find(a).unwrap_or(0), find(b).unwrap_or(1)),
+        None => (0, 1),
+    })
+}
+
 impl SlopeField {
-    pub fn new(spec: SlopeFieldSpec) -> Self {
+    pub fn new(spec: SlopeFieldSpec, deck_path: Option<&FsPath>) -> Self {
+        let mut ode = LiveOde::new(&spec.ode, deck_path);
+        let methods = MethodSet::new(&spec.methods, deck_path);
+        let mut spec = spec;
+        if let Some(p) = ode.problem() {
+            fill_defaults(&mut spec, p);
+        }
         Self {
             initial: spec.clone(),
             spec,
+            ode,
+            methods,
             cache: None,
             marks_cache: None,
         }
     }
 
-    fn shown(&self) -> Vec<MethodId> {
-        let s = &self.spec;
-        [
-            (s.euler, MethodId::Euler),
-            (s.midpoint, MethodId::Midpoint),
-            (s.rk4, MethodId::Rk4),
-        ]
-        .into_iter()
-        .filter_map(|(on, m)| on.then_some(m))
-        .collect()
-    }
-
-    /// Paths of the shown methods with their global error at their last time, and the
-    /// reference path.
-    pub fn compute(&self) -> (Vec<(MethodId, Path, Option<f64>)>, Path) {
-        match self.spec.field {
-            FieldKind::OneD(f) => self.compute_with(&f.system(), |t0, x0, t| {
-                f.exact(t0, x0[0], t).map(|x| vec![x])
-            }),
-            FieldKind::Phase(f) => self.compute_with(&f.system(), |_t0, x0, t| {
-                f.exact([x0[0], x0[1]], t).map(|p| p.to_vec())
-            }),
+    /// The start point and view the deck left out (also after a reload brought the last good
+    /// equation back), from the problem.
+    fn ensure_defaults(&mut self) {
+        if self.spec.start.is_some() && self.spec.view.is_some() {
+            return;
+        }
+        if let Some(p) = self.ode.problem().cloned() {
+            fill_defaults(&mut self.spec, &p);
+            fill_defaults(&mut self.initial, &p);
         }
     }
 
-    fn compute_with<S: System>(
-        &self,
-        sys: &S,
-        exact: impl Fn(f64, &[f64], f64) -> Option<Vec<f64>>,
-    ) -> (Vec<(MethodId, Path, Option<f64>)>, Path) {
-        let s = &self.spec;
-        let (t0, x0) = match s.field {
-            FieldKind::OneD(_) => (s.start.0, vec![s.start.1]),
-            FieldKind::Phase(_) => (0.0, vec![s.start.0, s.start.1]),
+    /// (t₀, full initial state) of the paths, from the start point.
+    fn start_state(&self, p: &Problem) -> (f64, Vec<f64>) {
+        let (a, b) = self.spec.start.unwrap_or((p.t0, p.initial[0]));
+        match plane(&self.spec, p) {
+            None => (a, vec![b]),
+            Some((i, j)) => {
+                let mut x = p.initial.clone();
+                x[i] = a;
+                x[j] = b;
+                (p.t0, x)
+            }
+        }
+    }
+
+    /// Full paths of the shown methods with their global error at their last time, and the
+    /// reference path.
+    pub fn compute(&mut self) -> (Vec<MethodPath>, Path) {
+        self.ensure_defaults();
+        let Some(p) = self.ode.problem().cloned() else {
+            return (Vec::new(), Path::default());
         };
+        let s = &self.spec;
+        let (t0, x0) = self.start_state(&p);
         let h = s.h.clamp(H_RANGE.0, H_RANGE.1);
-        let extent = (s.view.1 - s.view.0)
-            .abs()
-            .max((s.view.3 - s.view.2).abs())
-            .max(1.0);
+        let (vx0, vx1, vy0, vy1) = s.view.unwrap_or((0.0, 1.0, 0.0, 1.0));
+        let extent = (vx1 - vx0).abs().max((vy1 - vy0).abs()).max(1.0);
         let bound = 1e3 * extent;
         let n = steps_for(t0, s.t_end, h, MAX_STEPS);
-        let reference = reference_path(sys, t0, &x0, s.t_end.max(t0 + 1e-9));
-        let ref_end = *reference.ts.last().unwrap_or(&t0);
+        let reference = reference_path(&p, t0, &x0, s.t_end.max(t0 + 1e-9));
         let paths = self
+            .methods
             .shown()
-            .into_iter()
             .map(|m| {
-                let p = fixed_path(sys, m.scheme().unwrap(), t0, &x0, h, n, bound);
-                let err = if p.diverged_at.is_some() {
+                let path = fixed_path(&p, m.method.scheme(), t0, &x0, h, n, bound);
+                let error = if path.diverged_at.is_some() {
                     None
                 } else {
-                    let t_last = *p.ts.last().unwrap();
-                    // no closed form: the reference solve, reused when it ends where the path does
-                    let truth = exact(t0, &x0, t_last).unwrap_or_else(|| {
-                        if (t_last - ref_end).abs() <= 1e-9 * t_last.abs().max(1.0) {
-                            reference.last().to_vec()
-                        } else {
-                            reference_path(sys, t0, &x0, t_last).last().to_vec()
-                        }
-                    });
-                    let e = p
+                    let t_last = *path.ts.last().unwrap_or(&t0);
+                    let truth = truth_at(&p, t0, &x0, t_last, &reference);
+                    let e = path
                         .last()
                         .iter()
                         .zip(&truth)
@@ -122,91 +152,167 @@ impl SlopeField {
                         .sum::<f64>();
                     Some(e.sqrt())
                 };
-                (m, p, err)
+                MethodPath {
+                    key: m.method.key.clone(),
+                    name: m.method.name.clone(),
+                    color: m.color,
+                    path,
+                    error,
+                }
             })
             .collect();
         (paths, reference)
     }
 
-    /// A path as plot points: (t, x) in the t–x plane, (x, y) in the phase plane.
-    fn plot_points(&self, path: &Path) -> Vec<[f64; 2]> {
-        if matches!(self.spec.field, FieldKind::Phase(_)) {
-            path.xs.iter().map(|x| [x[0], x[1]]).collect()
-        } else {
-            path.ts
+    /// A path as plot points: (t, x) in the t–x plane, (xᵢ, xⱼ) in the phase plane.
+    fn plot_points(&self, plane: Option<(usize, usize)>, path: &Path) -> Vec<[f64; 2]> {
+        match plane {
+            Some((i, j)) => path.xs.iter().map(|x| [x[i], x[j]]).collect(),
+            None => path
+                .ts
                 .iter()
                 .zip(&path.xs)
                 .map(|(t, x)| [*t, x[0]])
-                .collect()
+                .collect(),
         }
     }
 
     /// Re-solves only when the parameters changed; frames in between only draw.
     fn update(&mut self) {
-        if self.cache.as_ref().is_some_and(|(s, _)| *s == self.spec) {
+        self.ensure_defaults();
+        let key = (
+            self.spec.clone(),
+            self.ode.revision(),
+            self.methods.switches(),
+        );
+        if self.cache.as_ref().is_some_and(|(k, _)| *k == key) {
             return;
         }
+        let Some(p) = self.ode.problem().cloned() else {
+            return;
+        };
+        let pl = plane(&self.spec, &p);
         let (paths, reference) = self.compute();
         let paths = paths
             .into_iter()
-            .map(|(method, path, error)| {
-                let pts = self.plot_points(&path);
+            .map(|m| {
+                let pts = self.plot_points(pl, &m.path);
                 DrawnPath {
-                    method,
+                    name: m.name,
+                    color: m.color,
                     line: decimate(&pts, MAX_DRAWN_POINTS),
                     markers: if pts.len() <= MAX_STEP_MARKERS {
                         pts
                     } else {
                         Vec::new()
                     },
-                    error,
-                    diverged_at: path.diverged_at,
+                    error: m.error,
+                    diverged_at: m.path.diverged_at,
                 }
             })
             .collect();
-        let reference = decimate(&self.plot_points(&reference), MAX_DRAWN_POINTS);
-        self.cache = Some((self.spec.clone(), Computed { paths, reference }));
+        let reference = decimate(&self.plot_points(pl, &reference), MAX_DRAWN_POINTS);
+        self.cache = Some((key, Computed { paths, reference }));
     }
 
     fn update_marks(&mut self) {
-        let s = &self.spec;
-        let key = (s.field, s.view, s.grid);
+        let revision = self.ode.revision();
+        let Some(p) = self.ode.problem().cloned() else {
+            return;
+        };
+        let pl = plane(&self.spec, &p);
+        let view = self.spec.view.unwrap_or((0.0, 1.0, 0.0, 1.0));
+        let key = (revision, view, self.spec.grid, pl.unwrap_or((0, 0)));
         if self.marks_cache.as_ref().is_some_and(|(k, _)| *k == key) {
             return;
         }
-        self.marks_cache = Some((key, self.marks()));
+        let marks = marks(&p, pl, view, self.spec.grid);
+        self.marks_cache = Some((key, marks));
     }
+}
 
-    /// Short marks along the field, centred on a grid, their length a fixed share of a cell
-    /// in screen-proportional units so steep slopes don't shoot out of their cell.
-    fn marks(&self) -> (Vec<[f64; 2]>, Vec<[f64; 2]>) {
-        let (x0, x1, y0, y1) = self.spec.view;
-        let (w, hgt) = (x1 - x0, y1 - y0);
-        let g = self.spec.grid.clamp(3, 60);
-        let len = 0.8 / g as f64;
-        let mut origins = Vec::with_capacity(g * g);
-        let mut tips = Vec::with_capacity(g * g);
-        for i in 0..g {
-            for j in 0..g {
-                let px = x0 + (i as f64 + 0.5) / g as f64 * w;
-                let py = y0 + (j as f64 + 0.5) / g as f64 * hgt;
-                let d = match self.spec.field {
-                    FieldKind::OneD(f) => [1.0, f.f(px, py)],
-                    FieldKind::Phase(f) => f.f([px, py]),
-                };
-                // normalise in view units, so the mark has the same on-screen length everywhere
-                let (u, v) = (d[0] / w, d[1] / hgt);
-                let n = u.hypot(v);
-                if !(n.is_finite() && n > 0.0) {
-                    continue;
-                }
-                let (dx, dy) = (u / n * len * w * 0.5, v / n * len * hgt * 0.5);
-                origins.push([px - dx, py - dy]);
-                tips.push([px + dx, py + dy]);
-            }
-        }
-        (origins, tips)
+/// The start point and view the deck left out, from the problem: the start at its `t0` and
+/// `initial`, the view around the exact (or reference) path.
+fn fill_defaults(spec: &mut SlopeFieldSpec, p: &Problem) {
+    let pl = plane(spec, p);
+    if spec.start.is_none() {
+        spec.start = Some(match pl {
+            None => (p.t0, p.initial[0]),
+            Some((i, j)) => (p.initial[i], p.initial[j]),
+        });
     }
+    if spec.view.is_none() {
+        let t_end = spec.t_end.max(p.t0 + 1e-9);
+        let r = reference_path(p, p.t0, &p.initial, t_end);
+        let pts: Vec<[f64; 2]> = match pl {
+            None => r.ts.iter().zip(&r.xs).map(|(t, x)| [*t, x[0]]).collect(),
+            Some((i, j)) => r.xs.iter().map(|x| [x[i], x[j]]).collect(),
+        };
+        let range = |k: usize| {
+            let lo = pts.iter().map(|q| q[k]).fold(f64::INFINITY, f64::min);
+            let hi = pts.iter().map(|q| q[k]).fold(f64::NEG_INFINITY, f64::max);
+            if !(lo.is_finite() && hi.is_finite()) {
+                return (-1.0, 1.0);
+            }
+            let pad = ((hi - lo) * 0.15).max(0.5);
+            (lo - pad, hi + pad)
+        };
+        let (y0, y1) = range(1);
+        spec.view = Some(match pl {
+            None => (p.t0, t_end, y0, y1),
+            Some(_) => {
+                let (x0, x1) = range(0);
+                (x0, x1, y0, y1)
+            }
+        });
+    }
+}
+
+/// Short marks along the field, centred on a grid, their length a fixed share of a cell in
+/// screen-proportional units so steep slopes don't shoot out of their cell. In a phase plane of
+/// more than two variables the others are held at their initial values.
+fn marks(
+    p: &Problem,
+    plane: Option<(usize, usize)>,
+    view: (f64, f64, f64, f64),
+    grid: usize,
+) -> Marks {
+    let (x0, x1, y0, y1) = view;
+    let (w, hgt) = (x1 - x0, y1 - y0);
+    let g = grid.clamp(3, 60);
+    let len = 0.8 / g as f64;
+    let mut origins = Vec::with_capacity(g * g);
+    let mut tips = Vec::with_capacity(g * g);
+    let mut state = p.initial.clone();
+    let mut d = vec![0.0; p.dim()];
+    for i in 0..g {
+        for j in 0..g {
+            let px = x0 + (i as f64 + 0.5) / g as f64 * w;
+            let py = y0 + (j as f64 + 0.5) / g as f64 * hgt;
+            let dir = match plane {
+                None => {
+                    p.rhs(px, &[py], &mut d);
+                    [1.0, d[0]]
+                }
+                Some((a, b)) => {
+                    state[a] = px;
+                    state[b] = py;
+                    p.rhs(p.t0, &state, &mut d);
+                    [d[a], d[b]]
+                }
+            };
+            // normalise in view units, so the mark has the same on-screen length everywhere
+            let (u, v) = (dir[0] / w, dir[1] / hgt);
+            let n = u.hypot(v);
+            if !(n.is_finite() && n > 0.0) {
+                continue;
+            }
+            let (dx, dy) = (u / n * len * w * 0.5, v / n * len * hgt * 0.5);
+            origins.push([px - dx, py - dy]);
+            tips.push([px + dx, py + dy]);
+        }
+    }
+    (origins, tips)
 }
 
 impl SlideWidget for SlopeField {
@@ -217,44 +323,42 @@ impl SlideWidget for SlopeField {
         k.step_h(&mut self.spec.h, H_RANGE);
         ui.horizontal(|ui| {
             style::h_slider(ui, &mut self.spec.h, H_RANGE);
-            style::method_toggles(
-                ui,
-                [
-                    (&mut self.spec.euler, MethodId::Euler),
-                    (&mut self.spec.midpoint, MethodId::Midpoint),
-                    (&mut self.spec.rk4, MethodId::Rk4),
-                    (&mut self.spec.exact, MethodId::Exact),
-                ],
+            self.methods.toggles_ui(ui);
+            ui.checkbox(
+                &mut self.spec.exact,
+                egui::RichText::new("exact").color(style::EXACT).strong(),
             );
         });
+        style::problems_ui(ui, self.ode.load_error(), &self.methods.errors);
         self.update();
         self.update_marks();
         let Some((_, (origins, tips))) = &self.marks_cache else {
             return;
         };
-        let phase = matches!(self.spec.field, FieldKind::Phase(_));
         let Some((_, c)) = &self.cache else { return };
-        let (x0, x1, y0, y1) = self.spec.view;
-        let label = match self.spec.field {
-            FieldKind::OneD(f) => f.label(),
-            FieldKind::Phase(f) => f.label(),
-        };
+        let phase = self.ode.problem().and_then(|p| plane(&self.spec, p));
+        let axis_names = self.ode.def().map(|d| match phase {
+            Some((i, j)) => (d.vars[i].clone(), d.vars[j].clone()),
+            None => ("t".to_string(), d.vars[0].clone()),
+        });
+        let (x_name, y_name) = axis_names.unwrap_or_default();
+        let (x0, x1, y0, y1) = self.spec.view.unwrap_or((0.0, 1.0, 0.0, 1.0));
+        let label = self.ode.label();
         // Errors line first, so the plot can take the rest of the height.
         ui.horizontal(|ui| {
             ui.label(egui::RichText::new(label).strong());
             ui.label("  global error at the end:");
             for p in &c.paths {
-                let m = p.method;
                 let txt = match (p.error, p.diverged_at) {
-                    (_, Some(t)) => format!("{} diverged at t = {}", m.name(), fmt_num(t)),
-                    (Some(e), None) => format!("{} {}", m.name(), fmt_num(e)),
-                    (None, None) => format!("{} –", m.name()),
+                    (_, Some(t)) => format!("{} diverged at t = {}", p.name, fmt_num(t)),
+                    (Some(e), None) => format!("{} {}", p.name, fmt_num(e)),
+                    (None, None) => format!("{} –", p.name),
                 };
-                ui.colored_label(style::method_color(m), egui::RichText::new(txt).monospace());
+                ui.colored_label(p.color, egui::RichText::new(txt).monospace());
             }
         });
         let show_exact = self.spec.exact;
-        let start = self.spec.start;
+        let start = self.spec.start.unwrap_or((x0, y0));
         let plot = Plot::new("slope-field")
             .allow_drag(false)
             .allow_zoom(false)
@@ -263,11 +367,16 @@ impl SlideWidget for SlopeField {
             .allow_double_click_reset(false)
             .show_x(false)
             .show_y(false)
-            .x_axis_label(if phase { "x" } else { "t" })
-            .y_axis_label(if phase { "y" } else { "x" })
+            .x_axis_label(x_name)
+            .y_axis_label(y_name)
             .default_x_bounds(x0, x1)
             .default_y_bounds(y0, y1);
-        let plot = if phase { plot.data_aspect(1.0) } else { plot };
+        let is_phase = phase.is_some();
+        let plot = if is_phase {
+            plot.data_aspect(1.0)
+        } else {
+            plot
+        };
         let resp = plot.show(ui, |p| {
             p.set_plot_bounds(egui_plot::PlotBounds::from_min_max([x0, y0], [x1, y1]));
             p.add(
@@ -277,7 +386,7 @@ impl SlideWidget for SlopeField {
                     PlotPoints::from(tips.clone()),
                 )
                 .color(style::FIELD)
-                .tip_length(if phase { 5.0 } else { 0.0 })
+                .tip_length(if is_phase { 5.0 } else { 0.0 })
                 .allow_hover(false),
             );
             if show_exact {
@@ -288,16 +397,15 @@ impl SlideWidget for SlopeField {
                 );
             }
             for path in &c.paths {
-                let (m, color) = (path.method, style::method_color(path.method));
                 p.line(
-                    Line::new(m.name(), path.line.clone())
-                        .color(color)
+                    Line::new(path.name.as_str(), path.line.clone())
+                        .color(path.color)
                         .width(style::PATH_WIDTH),
                 );
                 if !path.markers.is_empty() {
                     p.points(
-                        Points::new(m.name(), path.markers.clone())
-                            .color(color)
+                        Points::new(path.name.as_str(), path.markers.clone())
+                            .color(path.color)
                             .radius(3.5),
                     );
                 }
@@ -316,63 +424,118 @@ impl SlideWidget for SlopeField {
             }
         });
         if let Some(PlotPoint { x, y }) = resp.inner {
-            self.spec.start = (x.clamp(x0, x1), y.clamp(y0, y1));
+            self.spec.start = Some((x.clamp(x0, x1), y.clamp(y0, y1)));
         }
     }
 
     fn params(&mut self) -> Vec<Param<'_>> {
-        let (x0, x1, y0, y1) = self.spec.view;
-        vec![
-            Param::f64_log("h", "step h", &mut self.spec.h, H_RANGE.0, H_RANGE.1),
-            Param::f64(
+        self.ensure_defaults();
+        let (x0, x1, y0, y1) = self.spec.view.unwrap_or((0.0, 1.0, 0.0, 1.0));
+        let mut v = vec![Param::f64_log(
+            "h",
+            "step h",
+            &mut self.spec.h,
+            H_RANGE.0,
+            H_RANGE.1,
+        )];
+        if let Some(start) = self.spec.start.as_mut() {
+            v.push(Param::f64(
                 "start.0",
                 "start (horizontal)",
-                &mut self.spec.start.0,
+                &mut start.0,
                 x0,
                 x1,
-            ),
-            Param::f64(
+            ));
+            v.push(Param::f64(
                 "start.1",
                 "start (vertical)",
-                &mut self.spec.start.1,
+                &mut start.1,
                 y0,
                 y1,
-            ),
-            Param::bool("euler", "Euler", &mut self.spec.euler),
-            Param::bool("midpoint", "Midpoint", &mut self.spec.midpoint),
-            Param::bool("rk4", "RK4", &mut self.spec.rk4),
-            Param::bool("exact", "exact", &mut self.spec.exact),
-        ]
+            ));
+        }
+        v.extend(self.methods.params());
+        v.push(Param::bool("exact", "exact", &mut self.spec.exact));
+        v.extend(self.ode.params());
+        v
     }
 
-    spec_plumbing!(SlopeField);
+    fn reset(&mut self) {
+        self.spec = self.initial.clone();
+        self.methods.reset();
+        self.ode.reset();
+    }
+
+    fn spec(&self) -> WidgetSpec {
+        WidgetSpec::SlopeField(self.spec.clone())
+    }
+
+    fn ode(&mut self) -> Option<&mut LiveOde> {
+        Some(&mut self.ode)
+    }
+
+    fn problems(&self) -> Vec<String> {
+        style::problem_lines(self.ode.load_error(), &self.methods.errors)
+    }
+
+    fn data(&mut self) -> Option<PlotData> {
+        let p = self.ode.problem().cloned()?;
+        let (t0, x0) = self.start_state(&p);
+        let (paths, reference) = self.compute();
+        let mut series: Vec<(String, Path)> = paths.into_iter().map(|m| (m.key, m.path)).collect();
+        series.push(exact_series(&p, t0, &x0, reference));
+        Some(PlotData {
+            vars: p.vars.clone(),
+            series,
+        })
+    }
+}
+
+/// The exact solution at the reference path's times as the series `exact`, or the fine RK4
+/// reference itself as `reference` when the problem has no closed form.
+pub fn exact_series(p: &Problem, t0: f64, x0: &[f64], reference: Path) -> (String, Path) {
+    if !p.has_exact() {
+        return ("reference".into(), reference);
+    }
+    let xs = reference
+        .ts
+        .iter()
+        .map(|&t| p.exact_from(t0, x0, t).unwrap_or_default())
+        .collect();
+    (
+        "exact".into(),
+        Path {
+            ts: reference.ts,
+            xs,
+            f_evals: 0,
+            diverged_at: None,
+        },
+    )
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::deck::widgets::{Field1, Field2};
 
-    fn spec(h: f64) -> SlopeFieldSpec {
-        SlopeFieldSpec {
-            field: FieldKind::OneD(Field1::Forced),
-            start: (0.0, 1.5),
-            h,
-            t_end: 6.0,
-            view: (0.0, 6.0, -1.5, 2.0),
-            euler: true,
-            midpoint: true,
-            rk4: true,
-            exact: true,
-            grid: 15,
-        }
+    fn deck() -> &'static FsPath {
+        FsPath::new(concat!(env!("CARGO_MANIFEST_DIR"), "/slides/lecture.ron"))
+    }
+
+    fn widget(ron: &str) -> SlopeField {
+        SlopeField::new(ron::from_str(ron).unwrap(), Some(deck()))
+    }
+
+    fn forced(h: f64) -> SlopeField {
+        widget(&format!(
+            "(ode: File(\"problems/forced.ron\"), start: Some((0.0, 1.5)), h: {h}, t_end: 6.0, view: Some((0.0, 6.0, -1.5, 2.0)), grid: 15)"
+        ))
     }
 
     #[test]
     fn errors_rank_by_order_and_shrink_with_h() {
-        let (big, _) = SlopeField::new(spec(0.5)).compute();
-        let (small, _) = SlopeField::new(spec(0.25)).compute();
-        let e = |v: &Vec<(MethodId, Path, Option<f64>)>, i: usize| v[i].2.unwrap();
+        let (big, _) = forced(0.5).compute();
+        let (small, _) = forced(0.25).compute();
+        let e = |v: &Vec<MethodPath>, i: usize| v[i].error.unwrap();
         assert!(e(&big, 0) > e(&big, 1) && e(&big, 1) > e(&big, 2));
         // halving h: Euler's error halves, RK4's drops ~16×
         let r_euler = e(&big, 0) / e(&small, 0);
@@ -383,16 +546,28 @@ mod tests {
 
     #[test]
     fn phase_plane_circle_error_uses_exact_solution() {
-        let mut s = spec(0.1);
-        s.field = FieldKind::Phase(Field2::Circle);
-        s.start = (1.0, 0.0);
-        s.t_end = std::f64::consts::TAU;
-        s.view = (-2.0, 2.0, -2.0, 2.0);
-        let (paths, _) = SlopeField::new(s).compute();
+        let (paths, _) = widget(
+            "(ode: File(\"problems/circle.ron\"), h: 0.1, t_end: 6.283185307179586, view: Some((-2.0, 2.0, -2.0, 2.0)))",
+        )
+        .compute();
         // Euler's radius after ~63 steps: (1 + h²)^(n/2)
-        let euler = paths[0].1.last();
-        let n = paths[0].1.ts.len() - 1;
+        let euler = paths[0].path.last();
+        let n = paths[0].path.ts.len() - 1;
         let r = euler[0].hypot(euler[1]);
         assert!((r - 1.01f64.powf(n as f64 / 2.0)).abs() < 1e-9);
+        // the exact circle is the error's reference: RK4's error is tiny but not zero
+        let rk4 = paths[2].error.unwrap();
+        assert!(rk4 > 0.0 && rk4 < 1e-5, "{rk4}");
+    }
+
+    #[test]
+    fn defaults_come_from_the_problem() {
+        let w = widget(
+            "(ode: Inline((vars: [\"x\"], rhs: [\"-x\"], initial: [0.8], t0: 1.0)), t_end: 5.0)",
+        );
+        assert_eq!(w.spec.start, Some((1.0, 0.8)));
+        let (a, b, lo, hi) = w.spec.view.unwrap();
+        assert_eq!((a, b), (1.0, 5.0));
+        assert!(lo < 0.0 && hi > 0.8, "{lo} {hi}");
     }
 }

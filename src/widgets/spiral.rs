@@ -1,13 +1,21 @@
 //! 3. Inaccuracy: explicit Euler on the circle (ẋ, ẏ) = (−y, x) spirals outwards (its radius
 //! grows by √(1 + h²) per step); midpoint drifts far less and RK4 stays on the circle at
-//! lecture scale. The radius after each revolution is printed under each panel.
+//! lecture scale. The radius after each revolution is printed under each panel. Any ODE with
+//! two or more variables can be drawn (its first two, one panel per method), with its exact
+//! (or reference) solution dashed over one revolution.
 
 use egui_plot::{Line, Plot, PlotPoints, Points};
 
-use super::methods::{MAX_DRAWN_POINTS, MethodId, Path, decimate, fixed_path, steps_for};
+use std::path::Path as FsPath;
+
+use super::live_ode::LiveOde;
+use super::methods::{
+    MAX_DRAWN_POINTS, MethodEntry, MethodSet, Path, decimate, fixed_path, reference_path, steps_for,
+};
 use super::style::{self, fmt_num};
-use super::{Param, SlideWidget};
-use crate::deck::widgets::{Field2, SpiralSpec};
+use super::{Param, PlotData, SlideWidget};
+use crate::deck::widgets::{SpiralSpec, WidgetSpec};
+use crate::ode::problem::Problem;
 
 const H_RANGE: (f64, f64) = (0.005, 1.0);
 const MAX_STEPS: usize = 20_000;
@@ -15,71 +23,102 @@ const MAX_STEPS: usize = 20_000;
 /// One panel's drawing data, kept between frames: the full solve is reduced to a decimated
 /// polyline, its end point, the plot's half-width and the radius after each revolution.
 struct Panel {
-    method: MethodId,
+    name: String,
+    color: egui::Color32,
     line: Vec<[f64; 2]>,
     end: [f64; 2],
     lim: f64,
     revs: Vec<f64>,
 }
 
+struct Computed {
+    panels: Vec<Panel>,
+    /// The true solution over one revolution (t₀ … t₀ + 2π), dashed in every panel.
+    exact: Vec<[f64; 2]>,
+}
+
+type Key = (SpiralSpec, u64, Vec<bool>);
+
 pub struct Spiral {
     pub spec: SpiralSpec,
     initial: SpiralSpec,
-    cache: Option<(SpiralSpec, Vec<Panel>)>,
+    ode: LiveOde,
+    methods: MethodSet,
+    cache: Option<(Key, Computed)>,
 }
 
 impl Spiral {
-    pub fn new(spec: SpiralSpec) -> Self {
+    pub fn new(spec: SpiralSpec, deck_path: Option<&FsPath>) -> Self {
         Self {
+            ode: LiveOde::new(&spec.ode, deck_path),
+            methods: MethodSet::new(&spec.methods, deck_path),
             initial: spec.clone(),
             spec,
             cache: None,
         }
     }
 
-    fn methods(&self) -> &'static [MethodId] {
+    /// The methods drawn: all that are switched on, or only the first without `compare`.
+    fn drawn(&self) -> Vec<&MethodEntry> {
+        let shown = self.methods.shown();
         if self.spec.compare {
-            &MethodId::INTEGRATORS
+            shown.collect()
         } else {
-            &[MethodId::Euler]
+            shown.take(1).collect()
         }
     }
 
-    /// The path of `m` from (1, 0) over `turns` revolutions, and its radius after each one.
-    pub fn path(&self, m: MethodId) -> (Path, Vec<f64>) {
-        let h = self.spec.h.clamp(H_RANGE.0, H_RANGE.1);
-        let t_end = self.spec.turns.clamp(0.1, 20.0) * std::f64::consts::TAU;
-        let n = steps_for(0.0, t_end, h, MAX_STEPS);
-        let sys = Field2::Circle.system();
-        let p = fixed_path(&sys, m.scheme().unwrap(), 0.0, &[1.0, 0.0], h, n, 1e6);
-        let revs = (1..)
-            .map(|k| (k as f64 * std::f64::consts::TAU / h).round() as usize)
-            .take_while(|&i| i < p.xs.len())
-            .map(|i| p.xs[i][0].hypot(p.xs[i][1]))
-            .collect();
-        (p, revs)
+    /// The problem, if it has the two variables a spiral needs.
+    fn problem(&mut self) -> Option<Problem> {
+        self.ode.problem().filter(|p| p.vars.len() >= 2).cloned()
     }
 
-    /// The Euler path alone (kept for callers of the seed API).
-    pub fn euler_path(&self) -> Vec<[f64; 2]> {
-        self.path(MethodId::Euler)
-            .0
-            .xs
-            .iter()
-            .map(|x| [x[0], x[1]])
+    /// Every drawn method's path and radii per revolution.
+    pub fn paths(&mut self) -> Vec<(String, Path, Vec<f64>)> {
+        let Some(p) = self.problem() else {
+            return Vec::new();
+        };
+        let h = self.spec.h.clamp(H_RANGE.0, H_RANGE.1);
+        let t_end = p.t0 + self.spec.turns.clamp(0.1, 20.0) * std::f64::consts::TAU;
+        let n = steps_for(p.t0, t_end, h, MAX_STEPS);
+        self.drawn()
+            .into_iter()
+            .map(|m| {
+                let path = fixed_path(&p, m.method.scheme(), p.t0, &p.initial, h, n, 1e6);
+                let revs = (1..)
+                    .map(|k| (k as f64 * std::f64::consts::TAU / h).round() as usize)
+                    .take_while(|&i| i < path.xs.len())
+                    .map(|i| path.xs[i][0].hypot(path.xs[i][1]))
+                    .collect();
+                (m.method.key.clone(), path, revs)
+            })
             .collect()
     }
 
     fn update(&mut self) {
-        if self.cache.as_ref().is_some_and(|(s, _)| *s == self.spec) {
+        let key = (
+            self.spec.clone(),
+            self.ode.revision(),
+            self.methods.switches(),
+        );
+        if self.cache.as_ref().is_some_and(|(k, _)| *k == key) {
             return;
         }
-        let data = self
-            .methods()
+        let Some(p) = self.problem() else {
+            self.cache = None;
+            return;
+        };
+        let looks: Vec<(String, egui::Color32)> = self
+            .drawn()
             .iter()
-            .map(|&m| {
-                let (p, revs) = self.path(m);
-                let pts: Vec<[f64; 2]> = p.xs.iter().map(|x| [x[0], x[1]]).collect();
+            .map(|m| (m.method.name.clone(), m.color))
+            .collect();
+        let panels = self
+            .paths()
+            .into_iter()
+            .zip(looks)
+            .map(|((_, path, revs), (name, color))| {
+                let pts: Vec<[f64; 2]> = path.xs.iter().map(|x| [x[0], x[1]]).collect();
                 // over every point, not the decimated ones: the axes must hold the whole spiral
                 let lim = pts
                     .iter()
@@ -87,16 +126,33 @@ impl Spiral {
                     .fold(1.2, f64::max)
                     * 1.05;
                 Panel {
-                    method: m,
-                    end: *pts.last().unwrap_or(&[1.0, 0.0]),
+                    name,
+                    color,
+                    end: *pts.last().unwrap_or(&[p.initial[0], p.initial[1]]),
                     line: decimate(&pts, MAX_DRAWN_POINTS),
                     lim,
                     revs,
                 }
             })
             .collect();
-        self.cache = Some((self.spec.clone(), data));
+        let exact = one_revolution(&p);
+        self.cache = Some((key, Computed { panels, exact }));
     }
+}
+
+/// The true solution over t₀ … t₀ + 2π at 257 points: the exact one, or a fine RK4 reference.
+fn one_revolution(p: &Problem) -> Vec<[f64; 2]> {
+    let tau = std::f64::consts::TAU;
+    if p.has_exact() {
+        return (0..=256)
+            .filter_map(|i| {
+                let t = p.t0 + i as f64 / 256.0 * tau;
+                p.exact(t).map(|x| [x[0], x[1]])
+            })
+            .collect();
+    }
+    let r = reference_path(p, p.t0, &p.initial, p.t0 + tau);
+    decimate(&r.xs.iter().map(|x| [x[0], x[1]]).collect::<Vec<_>>(), 257)
 }
 
 impl SlideWidget for Spiral {
@@ -112,26 +168,32 @@ impl SlideWidget for Spiral {
                 (1.0 + self.spec.h.powi(2)).sqrt()
             ));
         });
+        style::problems_ui(ui, self.ode.load_error(), &self.methods.errors);
+        if self.ode.problem().is_some_and(|p| p.vars.len() < 2) {
+            style::problems_ui(
+                ui,
+                Some("the spiral draws problems with two variables"),
+                &[],
+            );
+        }
         self.update();
-        let Some((_, data)) = &self.cache else { return };
-        let n = data.len() as f32;
+        let Some((_, computed)) = &self.cache else {
+            return;
+        };
+        let data = &computed.panels;
+        let n = data.len().max(1) as f32;
         let spacing = ui.spacing().item_spacing.x;
         let w = ((ui.available_width() - spacing * (n - 1.0)) / n).max(50.0);
         let plot_h = (ui.available_height() - 70.0).max(80.0);
         let side = w.min(plot_h);
         ui.horizontal_top(|ui| {
             for panel in data {
-                let (m, lim, end) = (&panel.method, panel.lim, panel.end);
+                let (name, lim, end) = (&panel.name, panel.lim, panel.end);
                 ui.vertical(|ui| {
                     ui.set_width(w);
-                    let color = style::method_color(*m);
-                    let circle: PlotPoints = (0..=256)
-                        .map(|i| {
-                            let a = i as f64 / 256.0 * std::f64::consts::TAU;
-                            [a.cos(), a.sin()]
-                        })
-                        .collect();
-                    Plot::new(format!("spiral-{}", m.name()))
+                    let color = panel.color;
+                    let circle = PlotPoints::from(computed.exact.clone());
+                    Plot::new(format!("spiral-{name}"))
                         .width(w)
                         .height(side)
                         .data_aspect(1.0)
@@ -150,13 +212,13 @@ impl SlideWidget for Spiral {
                                     .style(egui_plot::LineStyle::dashed_loose()),
                             );
                             p.line(
-                                Line::new(m.name(), panel.line.clone())
+                                Line::new(name.as_str(), panel.line.clone())
                                     .color(color)
                                     .width(style::PATH_WIDTH),
                             );
                             p.points(Points::new("end", vec![end]).color(color).radius(5.0));
                         });
-                    ui.colored_label(color, egui::RichText::new(m.name()).strong());
+                    ui.colored_label(color, egui::RichText::new(name.as_str()).strong());
                     let radii: Vec<String> =
                         panel.revs.iter().take(4).map(|r| fmt_num(*r)).collect();
                     ui.label(format!("r per turn: {}", radii.join(", ")));
@@ -166,14 +228,39 @@ impl SlideWidget for Spiral {
     }
 
     fn params(&mut self) -> Vec<Param<'_>> {
-        vec![
+        let mut v = vec![
             Param::f64_log("h", "step h", &mut self.spec.h, H_RANGE.0, H_RANGE.1),
             Param::f64("turns", "revolutions", &mut self.spec.turns, 0.5, 10.0),
-            Param::bool("compare", "midpoint and RK4 beside", &mut self.spec.compare),
-        ]
+            Param::bool("compare", "other methods beside", &mut self.spec.compare),
+        ];
+        v.extend(self.methods.params());
+        v.extend(self.ode.params());
+        v
     }
 
-    spec_plumbing!(Spiral);
+    fn reset(&mut self) {
+        self.spec = self.initial.clone();
+        self.methods.reset();
+        self.ode.reset();
+    }
+
+    fn spec(&self) -> WidgetSpec {
+        WidgetSpec::Spiral(self.spec.clone())
+    }
+
+    fn ode(&mut self) -> Option<&mut LiveOde> {
+        Some(&mut self.ode)
+    }
+
+    fn problems(&self) -> Vec<String> {
+        style::problem_lines(self.ode.load_error(), &self.methods.errors)
+    }
+
+    fn data(&mut self) -> Option<PlotData> {
+        let vars = self.problem()?.vars;
+        let series = self.paths().into_iter().map(|(k, p, _)| (k, p)).collect();
+        Some(PlotData { vars, series })
+    }
 }
 
 #[cfg(test)]
@@ -182,16 +269,16 @@ mod tests {
 
     #[test]
     fn euler_radius_per_revolution_matches_theory() {
-        let s = Spiral::new(SpiralSpec {
-            h: 0.1,
-            turns: 2.0,
-            compare: true,
-        });
-        let (_, revs) = s.path(MethodId::Euler);
+        let deck = FsPath::new(concat!(env!("CARGO_MANIFEST_DIR"), "/slides/lecture.ron"));
+        let spec =
+            ron::from_str("(ode: File(\"problems/circle.ron\"), h: 0.1, turns: 2.0)").unwrap();
+        let mut s = Spiral::new(spec, Some(deck));
+        let paths = s.paths();
+        let revs = &paths[0].2;
         let n1 = (std::f64::consts::TAU / 0.1).round();
         let expected = (1.0f64 + 0.01).powf(n1 / 2.0);
         assert!((revs[0] - expected).abs() < 1e-9, "{revs:?} vs {expected}");
-        let (_, rk4) = s.path(MethodId::Rk4);
+        let rk4 = &paths[2].2;
         assert!((rk4[0] - 1.0).abs() < 1e-5, "{rk4:?}");
     }
 }

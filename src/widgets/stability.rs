@@ -4,9 +4,10 @@
 
 use egui_plot::{Line, Plot, PlotImage, PlotPoint};
 
+use super::methods::{MethodSet, is_rk4_typo};
 use super::style;
 use super::{Param, SlideWidget};
-use crate::deck::widgets::StabilitySpec;
+use crate::deck::widgets::{StabilitySpec, WidgetSpec};
 use crate::ode::Tableau;
 use crate::ode::stability::cabs;
 
@@ -51,25 +52,10 @@ pub fn stable_h_limit(t: &Tableau, lambda: C, h_max: f64) -> f64 {
     h_max
 }
 
-/// Colours of deck tableaux, in order; the notes' RK4 typo always gets its own
-/// [`style::RK4_TYPO`] (as in every other widget), so it is not in this cycle.
-const EXTRA_COLORS: [egui::Color32; 3] = [style::HEUN, style::DOPRI, style::SYMPLECTIC_EULER];
-
 /// Opacity of one method's stable region: light enough that the contours and the axes stay
 /// readable through it on a dark slide, and overlaps read as deeper.
 const FILL_ALPHA: f32 = 0.22;
 
-/// Whether `t` has the coefficients of the notes' RK4 typo (whatever the deck named it).
-pub fn is_rk4_typo(t: &Tableau) -> bool {
-    let typo = super::methods::rk4_typo();
-    let close = |x: &[f64], y: &[f64]| {
-        x.len() == y.len() && x.iter().zip(y).all(|(a, b)| (a - b).abs() <= 1e-12)
-    };
-    close(&t.b, &typo.b)
-        && close(&t.c, &typo.c)
-        && t.a.len() == typo.a.len()
-        && t.a.iter().zip(&typo.a).all(|(x, y)| close(x, y))
-}
 const RES: usize = 360;
 
 /// Each method's |R| = 1 contour as segments, with its name and colour.
@@ -78,8 +64,8 @@ pub type Contours = Vec<(String, egui::Color32, Vec<[[f64; 2]; 2]>)>;
 pub struct Stability {
     pub spec: StabilitySpec,
     initial: StabilitySpec,
-    /// The spec's `files`, loaded once: a tableau, or the error naming file and position.
-    loaded: Vec<Result<Tableau, String>>,
+    /// The spec's `methods`, resolved once (tableau files read relative to the deck).
+    methods: MethodSet,
     cache: Option<(StabilitySpec, egui::TextureHandle, Contours)>,
 }
 
@@ -88,43 +74,34 @@ impl Stability {
         Self::new_in(spec, None)
     }
 
-    /// Loads the spec's tableau `files` relative to `base_dir` (the deck's folder).
-    pub fn new_in(spec: StabilitySpec, base_dir: Option<&std::path::Path>) -> Self {
-        let loaded = spec
-            .files
-            .iter()
-            .map(|f| {
-                let path = base_dir.map_or_else(|| f.into(), |b| b.join(f));
-                Tableau::load(&path).map_err(|e| e.to_string())
-            })
-            .collect();
+    /// Resolves the spec's tableau files relative to the deck at `deck_path`.
+    pub fn new_in(spec: StabilitySpec, deck_path: Option<&std::path::Path>) -> Self {
         Self {
+            methods: MethodSet::new(&spec.methods, deck_path),
             initial: spec.clone(),
             spec,
-            loaded,
             cache: None,
         }
     }
 
-    /// (name, colour, tableau) of every method drawn.
+    /// (name, colour, tableau) of every method drawn: the deck's list, then inline tableaux.
     pub fn entries(&self) -> Vec<(String, egui::Color32, Tableau)> {
         let mut v: Vec<_> = self
-            .spec
             .methods
+            .entries
             .iter()
-            .filter_map(|m| {
-                m.tableau()
-                    .map(|t| (m.name().to_owned(), style::method_color(*m), t))
-            })
+            .map(|e| (e.method.name.clone(), e.color, e.method.tableau.clone()))
             .collect();
-        let loaded = self.loaded.iter().filter_map(|t| t.as_ref().ok());
-        let mut i = 0;
-        for t in self.spec.tableaux.iter().chain(loaded) {
+        let mut i = v
+            .iter()
+            .filter(|(_, c, _)| style::EXTRA_COLORS.contains(c))
+            .count();
+        for t in &self.spec.tableaux {
             let color = if is_rk4_typo(t) {
                 style::RK4_TYPO
             } else {
                 i += 1;
-                EXTRA_COLORS[(i - 1) % EXTRA_COLORS.len()]
+                style::EXTRA_COLORS[(i - 1) % style::EXTRA_COLORS.len()]
             };
             v.push((t.name.clone(), color, t.clone()));
         }
@@ -236,9 +213,7 @@ impl SlideWidget for Stability {
             self.cache = Some((self.spec.clone(), tex, contours));
         }
         let entries = self.entries();
-        for e in self.loaded.iter().filter_map(|t| t.as_ref().err()) {
-            ui.colored_label(style::DIVERGED, e);
-        }
+        style::problems_ui(ui, None, &self.methods.errors);
         ui.horizontal(|ui| {
             ui.label("|R(hλ)| ≤ 1:");
             for (name, color, _) in &entries {
@@ -332,14 +307,24 @@ impl SlideWidget for Stability {
         )]
     }
 
-    spec_plumbing!(Stability);
+    fn reset(&mut self) {
+        self.spec = self.initial.clone();
+    }
+
+    fn spec(&self) -> WidgetSpec {
+        WidgetSpec::Stability(self.spec.clone())
+    }
+
+    fn problems(&self) -> Vec<String> {
+        self.methods.errors.clone()
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::deck::widgets::MethodRef;
     use crate::deck::widgets::stability::default_view;
-    use crate::widgets::MethodId;
 
     #[test]
     fn known_stability_limits() {
@@ -354,16 +339,19 @@ mod tests {
 
     #[test]
     fn deck_tableau_files_load_and_a_missing_one_is_an_error() {
-        let base = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("slides");
+        let deck = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("slides/lecture.ron");
         let spec = StabilitySpec {
-            methods: vec![MethodId::Rk4],
+            methods: vec![
+                MethodRef::Rk4,
+                MethodRef::Tableau("tableaux/rk4-typo.ron".into()),
+                MethodRef::Tableau("tableaux/nope.ron".into()),
+            ],
             tableaux: vec![],
-            files: vec!["tableaux/rk4-typo.ron".into(), "tableaux/nope.ron".into()],
             view: default_view(),
             lambda: None,
             h: 1.0,
         };
-        let w = Stability::new_in(spec, Some(&base));
+        let w = Stability::new_in(spec, Some(&deck));
         let entries = w.entries();
         assert_eq!(entries.len(), 2);
         // the typo'd RK4 is a different method: its region on the real axis ends elsewhere
@@ -372,16 +360,15 @@ mod tests {
         assert_eq!(entries[1].1, style::RK4_TYPO, "the typo keeps its colour");
         let lim = |t: &Tableau| stable_h_limit(t, C(-1.0, 0.0), 10.0);
         assert!((lim(typo) - lim(&Tableau::rk4())).abs() > 0.05);
-        let err = w.loaded[1].as_ref().unwrap_err();
+        let err = &w.methods.errors[0];
         assert!(err.contains("nope.ron"), "{err}");
     }
 
     #[test]
     fn regions_are_translucent_method_colours() {
         let spec = StabilitySpec {
-            methods: vec![MethodId::Euler],
+            methods: vec![MethodRef::Euler],
             tableaux: vec![],
-            files: vec![],
             view: default_view(),
             lambda: None,
             h: 1.0,

@@ -4,17 +4,72 @@
 
 use egui_plot::{Arrows, Line, Plot, PlotPoints, Points, Text};
 
-use super::methods::{MethodId, fixed_path};
+use std::path::Path as FsPath;
+
+use super::live_ode::LiveOde;
+use super::methods::fixed_path;
 use super::style::{self, fmt_num};
-use super::{Param, SlideWidget};
-use crate::deck::widgets::{Field1, StepSpec};
+use super::{Param, PlotData, SlideWidget};
+use crate::deck::widgets::{MethodRef, StepSpec, WidgetSpec};
+use crate::ode::problem::Problem;
+use crate::ode::{Method, Scheme, System};
+
+/// The three constructions drawn (any other method is drawn as RK4's).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Construction {
+    Euler,
+    Midpoint,
+    Rk4,
+}
+
+impl Construction {
+    pub fn of(m: &MethodRef) -> Self {
+        match m {
+            MethodRef::Euler => Construction::Euler,
+            MethodRef::Midpoint => Construction::Midpoint,
+            _ => Construction::Rk4,
+        }
+    }
+
+    fn method(self) -> Method {
+        match self {
+            Construction::Euler => Method::Euler,
+            Construction::Midpoint => Method::Midpoint,
+            Construction::Rk4 => Method::Rk4,
+        }
+    }
+
+    fn reference(self) -> MethodRef {
+        match self {
+            Construction::Euler => MethodRef::Euler,
+            Construction::Midpoint => MethodRef::Midpoint,
+            Construction::Rk4 => MethodRef::Rk4,
+        }
+    }
+
+    fn key(self) -> &'static str {
+        match self {
+            Construction::Euler => "euler",
+            Construction::Midpoint => "midpoint",
+            Construction::Rk4 => "rk4",
+        }
+    }
+
+    fn name(self) -> &'static str {
+        match self {
+            Construction::Euler => "Euler",
+            Construction::Midpoint => "Midpoint",
+            Construction::Rk4 => "RK4",
+        }
+    }
+}
 
 /// Number of reveal stages of a construction.
-pub fn stages(m: MethodId) -> usize {
+pub fn stages(m: Construction) -> usize {
     match m {
-        MethodId::Euler => 2,
-        MethodId::Midpoint => 3,
-        _ => 5,
+        Construction::Euler => 2,
+        Construction::Midpoint => 3,
+        Construction::Rk4 => 5,
     }
 }
 
@@ -34,7 +89,12 @@ pub struct Arrow {
 
 /// The construction of one step of `m` from `(t0, x0)`: arrows and the end point. The end
 /// point comes from the project's integrator, so the picture is the method, not a drawing of it.
-pub fn construct(f: Field1, m: MethodId, t0: f64, x0: f64, h: f64) -> (Vec<Arrow>, [f64; 2]) {
+pub fn construct(p: &Problem, m: Construction, t0: f64, x0: f64, h: f64) -> (Vec<Arrow>, [f64; 2]) {
+    let mut d = [0.0];
+    let mut f = |t: f64, x: f64| {
+        p.rhs(t, &[x], &mut d);
+        d[0]
+    };
     let slope_mark = |t: f64, x: f64, k: f64, label: &str, stage: usize| {
         let d = 0.18 * h;
         Arrow {
@@ -55,29 +115,29 @@ pub fn construct(f: Field1, m: MethodId, t0: f64, x0: f64, h: f64) -> (Vec<Arrow
         anchor: egui::Align2::LEFT_BOTTOM,
     };
     let mut out = Vec::new();
-    let k1 = f.f(t0, x0);
+    let k1 = f(t0, x0);
     match m {
-        MethodId::Euler => {
+        Construction::Euler => {
             out.push(slope_mark(t0, x0, k1, "k₁ = f(x₀)", 1));
             out.push(step(t0, x0, h, k1, "x₀ + h k₁", 2));
         }
-        MethodId::Midpoint => {
+        Construction::Midpoint => {
             out.push(step(t0, x0, h / 2.0, k1, "half step", 1));
             let (tm, xm) = (t0 + h / 2.0, x0 + h / 2.0 * k1);
-            let k2 = f.f(tm, xm);
+            let k2 = f(tm, xm);
             out.push(slope_mark(tm, xm, k2, "f at midpoint", 2));
             out.push(step(t0, x0, h, k2, "x₀ + h f(mid)", 3));
         }
-        _ => {
+        Construction::Rk4 => {
             out.push(step(t0, x0, h / 2.0, k1, "k₁", 1));
-            let k2 = f.f(t0 + h / 2.0, x0 + h / 2.0 * k1);
+            let k2 = f(t0 + h / 2.0, x0 + h / 2.0 * k1);
             out.push(slope_mark(t0 + h / 2.0, x0 + h / 2.0 * k1, k2, "", 2));
             out.push(step(t0, x0, h / 2.0, k2, "k₂", 2));
-            let k3 = f.f(t0 + h / 2.0, x0 + h / 2.0 * k2);
+            let k3 = f(t0 + h / 2.0, x0 + h / 2.0 * k2);
             out.push(slope_mark(t0 + h / 2.0, x0 + h / 2.0 * k2, k3, "", 3));
             let k3_at = out.len();
             out.push(step(t0, x0, h, k3, "k₃", 3));
-            let k4 = f.f(t0 + h, x0 + h * k3);
+            let k4 = f(t0 + h, x0 + h * k3);
             out.push(slope_mark(t0 + h, x0 + h * k3, k4, "k₄", 4));
             let k = (k1 + 2.0 * k2 + 2.0 * k3 + k4) / 6.0;
             out.push(step(t0, x0, h, k, "(k₁+2k₂+2k₃+k₄)/6", 5));
@@ -91,9 +151,15 @@ pub fn construct(f: Field1, m: MethodId, t0: f64, x0: f64, h: f64) -> (Vec<Arrow
             }
         }
     }
-    let sys = f.system();
-    let scheme = m.scheme().expect("a stepping method");
-    let end = fixed_path(&sys, scheme, t0, &[x0], h, 1, f64::INFINITY);
+    let end = fixed_path(
+        p,
+        Scheme::Method(m.method()),
+        t0,
+        &[x0],
+        h,
+        1,
+        f64::INFINITY,
+    );
     (out, [t0 + h, end.last()[0]])
 }
 
@@ -102,13 +168,34 @@ const H_RANGE: (f64, f64) = (0.1, 3.0);
 pub struct StepConstruction {
     pub spec: StepSpec,
     initial: StepSpec,
+    ode: LiveOde,
 }
 
 impl StepConstruction {
-    pub fn new(spec: StepSpec) -> Self {
+    pub fn new(mut spec: StepSpec, deck_path: Option<&FsPath>) -> Self {
+        let mut ode = LiveOde::new(&spec.ode, deck_path);
+        if spec.start.is_none()
+            && let Some(p) = ode.problem()
+        {
+            spec.start = Some((p.t0, p.initial[0]));
+        }
         Self {
             initial: spec.clone(),
             spec,
+            ode,
+        }
+    }
+
+    /// The 1-D problem to construct on, or why there is none.
+    fn problem(&mut self) -> Result<Problem, String> {
+        let err = self.ode.load_error().map(str::to_owned);
+        match self.ode.problem() {
+            Some(p) if p.vars.len() == 1 => Ok(p.clone()),
+            Some(p) => Err(format!(
+                "the step construction draws 1-D problems; this one has {} variables",
+                p.vars.len()
+            )),
+            None => Err(err.unwrap_or_else(|| "no equation".into())),
         }
     }
 }
@@ -119,10 +206,7 @@ impl SlideWidget for StepConstruction {
         let ink = style::ink(ui);
         // stay inside a column: the control row must not widen the plot past its share
         ui.set_max_width(ui.available_width());
-        let m = match self.spec.method {
-            MethodId::Euler | MethodId::Midpoint => self.spec.method,
-            _ => MethodId::Rk4,
-        };
+        let m = Construction::of(&self.spec.method);
         let n = stages(m);
         let k = style::keys(ui);
         if k.forward {
@@ -134,16 +218,20 @@ impl SlideWidget for StepConstruction {
         k.step_h(&mut self.spec.h, H_RANGE);
         self.spec.stage = self.spec.stage.min(n);
         ui.horizontal_wrapped(|ui| {
-            for c in [MethodId::Euler, MethodId::Midpoint, MethodId::Rk4] {
+            for c in [
+                Construction::Euler,
+                Construction::Midpoint,
+                Construction::Rk4,
+            ] {
                 // selected: readable on the selection fill; otherwise the method's colour
                 let colour = if m == c {
                     ui.visuals().strong_text_color()
                 } else {
-                    style::method_color(c)
+                    style::method_color(c.key())
                 };
                 let text = egui::RichText::new(c.name()).color(colour).strong();
                 if ui.selectable_label(m == c, text).clicked() {
-                    self.spec.method = c;
+                    self.spec.method = c.reference();
                     self.spec.stage = 0;
                 }
             }
@@ -153,18 +241,31 @@ impl SlideWidget for StepConstruction {
             ui.add(egui::Slider::new(&mut self.spec.h, H_RANGE.0..=H_RANGE.1).text("h"));
             ui.add(egui::Slider::new(&mut self.spec.stage, 0..=n).text("stage  [ ]"));
         });
-        let (t0, x0, h) = (self.spec.start.0, self.spec.start.1, self.spec.h);
-        let f = self.spec.field;
-        let (arrows, end) = construct(f, m, t0, x0, h);
+        let p = match self.problem() {
+            Ok(p) => p,
+            Err(e) => {
+                style::problems_ui(ui, Some(&e), &[]);
+                return;
+            }
+        };
+        style::problems_ui(ui, self.ode.load_error(), &[]);
+        let (t0, x0) = self.spec.start.unwrap_or((p.t0, p.initial[0]));
+        let h = self.spec.h;
+        let (arrows, end) = construct(&p, m, t0, x0, h);
         let stage = self.spec.stage;
-        let color = style::method_color(m);
-        let exact: Vec<[f64; 2]> = (0..=200)
-            .filter_map(|i| {
-                let t = t0 - 0.1 * h + i as f64 / 200.0 * 1.3 * h;
-                f.exact(t0, x0, t).map(|x| [t, x])
-            })
-            .collect();
-        let truth = f.exact(t0, x0, t0 + h);
+        let color = style::method_color(m.key());
+        let exact: Vec<[f64; 2]> = if p.has_exact() {
+            (0..=200)
+                .filter_map(|i| {
+                    let t = t0 - 0.1 * h + i as f64 / 200.0 * 1.3 * h;
+                    p.exact_from(t0, &[x0], t).map(|x| [t, x[0]])
+                })
+                .collect()
+        } else {
+            let r = super::methods::reference_path(&p, t0, &[x0], t0 + 1.2 * h);
+            r.ts.iter().zip(&r.xs).map(|(t, x)| [*t, x[0]]).collect()
+        };
+        let truth = p.exact_from(t0, &[x0], t0 + h).map(|x| x[0]);
         if stage == n {
             let err = truth
                 .map(|x| fmt_num((end[1] - x).abs()))
@@ -238,13 +339,50 @@ impl SlideWidget for StepConstruction {
     }
 
     fn params(&mut self) -> Vec<Param<'_>> {
-        vec![
+        let mut v = vec![
             Param::f64("h", "step h", &mut self.spec.h, H_RANGE.0, H_RANGE.1),
             Param::usize("stage", "construction stage", &mut self.spec.stage, 0, 5),
-        ]
+        ];
+        v.extend(self.ode.params());
+        v
     }
 
-    spec_plumbing!(StepConstruction);
+    fn reset(&mut self) {
+        self.spec = self.initial.clone();
+        self.ode.reset();
+    }
+
+    fn spec(&self) -> WidgetSpec {
+        WidgetSpec::StepConstruction(self.spec.clone())
+    }
+
+    fn ode(&mut self) -> Option<&mut LiveOde> {
+        Some(&mut self.ode)
+    }
+
+    fn problems(&self) -> Vec<String> {
+        style::problem_lines(self.ode.load_error(), &[])
+    }
+
+    /// One step of the chosen method from the start: its two points.
+    fn data(&mut self) -> Option<PlotData> {
+        let p = self.problem().ok()?;
+        let m = Construction::of(&self.spec.method);
+        let (t0, x0) = self.spec.start.unwrap_or((p.t0, p.initial[0]));
+        let path = fixed_path(
+            &p,
+            Scheme::Method(m.method()),
+            t0,
+            &[x0],
+            self.spec.h,
+            1,
+            f64::INFINITY,
+        );
+        Some(PlotData {
+            vars: p.vars.clone(),
+            series: vec![(m.key().to_string(), path)],
+        })
+    }
 }
 
 #[cfg(test)]
@@ -253,8 +391,17 @@ mod tests {
 
     #[test]
     fn drawn_rk4_combination_lands_on_the_integrators_step() {
-        for m in [MethodId::Euler, MethodId::Midpoint, MethodId::Rk4] {
-            let (arrows, end) = construct(Field1::Forced, m, 0.2, 1.1, 0.9);
+        let p = Problem::load(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/slides/problems/forced.ron"
+        ))
+        .unwrap();
+        for m in [
+            Construction::Euler,
+            Construction::Midpoint,
+            Construction::Rk4,
+        ] {
+            let (arrows, end) = construct(&p, m, 0.2, 1.1, 0.9);
             let last = arrows.last().unwrap();
             assert!(
                 (last.to[0] - end[0]).abs() < 1e-12 && (last.to[1] - end[1]).abs() < 1e-12,

@@ -3,8 +3,6 @@
 
 use egui::Color32;
 
-use super::methods::MethodId;
-
 /// Labels and checkboxes of the exact solution: a grey readable on light and dark slides.
 /// Exact curves themselves are drawn in [`ink`], the theme's strongest text colour.
 pub const EXACT: Color32 = Color32::from_gray(140);
@@ -20,14 +18,19 @@ pub const DIVERGED: Color32 = Color32::from_rgb(200, 0, 0);
 /// and readable on light and dark slides.
 pub const SYMPLECTIC_EULER: Color32 = Color32::from_rgb(150, 110, 220);
 
-pub fn method_color(m: MethodId) -> Color32 {
-    match m {
-        MethodId::Euler => EULER,
-        MethodId::Midpoint => MIDPOINT,
-        MethodId::Heun => HEUN,
-        MethodId::Rk4 => RK4,
-        MethodId::Rk4Typo => RK4_TYPO,
-        MethodId::Exact => EXACT,
+/// Colours of deck tableaux other than the notes' RK4 typo (which always gets [`RK4_TYPO`]),
+/// in order.
+pub const EXTRA_COLORS: [Color32; 3] = [HEUN, DOPRI, SYMPLECTIC_EULER];
+
+/// The colour of a built-in method by its key (`euler`, `midpoint`, `heun`, `rk4`, `exact`).
+pub fn method_color(key: &str) -> Color32 {
+    match key {
+        "euler" => EULER,
+        "midpoint" => MIDPOINT,
+        "heun" => HEUN,
+        "rk4" => RK4,
+        "rk4-typo" => RK4_TYPO,
+        _ => EXACT,
     }
 }
 
@@ -117,21 +120,6 @@ pub fn h_slider(ui: &mut egui::Ui, h: &mut f64, range: (f64, f64)) {
     );
 }
 
-/// One checkbox per method, labelled in that method's colour.
-pub fn method_toggles<'a>(
-    ui: &mut egui::Ui,
-    toggles: impl IntoIterator<Item = (&'a mut bool, MethodId)>,
-) {
-    for (on, m) in toggles {
-        ui.checkbox(
-            on,
-            egui::RichText::new(m.name())
-                .color(method_color(m))
-                .strong(),
-        );
-    }
-}
-
 /// A readable number for labels: 3 significant digits, scientific outside 1e-3..1e4.
 pub fn fmt_num(x: f64) -> String {
     if !x.is_finite() {
@@ -142,5 +130,23 @@ pub fn fmt_num(x: f64) -> String {
         format!("{x:.2e}")
     } else {
         format!("{x:.3}")
+    }
+}
+
+/// What keeps a widget from drawing all it should (its equation did not load, a tableau file
+/// is missing), one line each.
+pub fn problem_lines(load_error: Option<&str>, method_errors: &[String]) -> Vec<String> {
+    load_error
+        .map(str::to_owned)
+        .into_iter()
+        .chain(method_errors.iter().cloned())
+        .collect()
+}
+
+/// Those lines in red above the plot: the slide still shows what could be drawn (the last good
+/// equation, the methods that loaded).
+pub fn problems_ui(ui: &mut egui::Ui, load_error: Option<&str>, method_errors: &[String]) {
+    for line in problem_lines(load_error, method_errors) {
+        ui.colored_label(DIVERGED, egui::RichText::new(line).small());
     }
 }

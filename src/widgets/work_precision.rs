@@ -9,13 +9,16 @@ use std::time::Instant;
 
 use egui_plot::{Line, Points};
 
-use super::convergence::log_axes_plot;
-use super::methods::{MethodId, steps_for};
-use super::style::{self, fmt_num};
-use super::{Param, SlideWidget};
-use crate::deck::widgets::{Field2, WorkPrecisionSpec};
+use std::path::Path as FsPath;
 use std::sync::OnceLock;
 
+use super::convergence::{log_axes_plot, truth};
+use super::live_ode::LiveOde;
+use super::methods::{MethodSet, steps_for};
+use super::style::{self, fmt_num};
+use super::{Param, SlideWidget};
+use crate::deck::widgets::{WidgetSpec, WorkPrecisionSpec};
+use crate::ode::problem::Problem;
 use crate::ode::study::max_error;
 use crate::ode::{Scheme, Tableau, solve_fixed_final};
 
@@ -43,19 +46,23 @@ pub struct Sample {
 }
 
 /// The study for one method (pure; runs on any thread): `ode::solve_fixed_final` at each h,
-/// error by `ode::study::max_error` against the exact circle.
-pub fn study(spec: &WorkPrecisionSpec, scheme: Scheme<'_>) -> Vec<Sample> {
-    let sys = Field2::Circle.system();
-    let exact = Field2::Circle.exact([1.0, 0.0], spec.t_end).unwrap();
+/// error by `ode::study::max_error` against `exact`, the true state at t_end.
+pub fn study(
+    spec: &WorkPrecisionSpec,
+    sys: &Problem,
+    exact: &[f64],
+    scheme: Scheme<'_>,
+) -> Vec<Sample> {
+    let (t0, x0) = (sys.t0, sys.initial.as_slice());
     let h_max = 1.0;
     (0..spec.levels.clamp(2, 16))
         .map(|k| {
-            let n = steps_for(0.0, spec.t_end, h_max / 2f64.powi(k as i32), 1 << 22);
-            let h = spec.t_end / n as f64;
+            let n = steps_for(t0, spec.t_end, h_max / 2f64.powi(k as i32), 1 << 22).max(1);
+            let h = (spec.t_end - t0) / n as f64;
             let start = Instant::now();
             let mut reps = 0;
             let sol = loop {
-                let sol = solve_fixed_final(&sys, scheme, 0.0, &[1.0, 0.0], h, spec.t_end, 1e12);
+                let sol = solve_fixed_final(sys, scheme, t0, x0, h, spec.t_end, 1e12);
                 reps += 1;
                 // repeat short runs so the clock resolves them
                 if start.elapsed().as_secs_f64() > 2e-3 || reps >= 50 {
@@ -68,7 +75,7 @@ pub fn study(spec: &WorkPrecisionSpec, scheme: Scheme<'_>) -> Vec<Sample> {
                 start.elapsed().as_secs_f64() / reps as f64
             };
             let error = if sol.finished() {
-                max_error(sol.last().1, &exact)
+                max_error(sol.last().1, exact)
             } else {
                 f64::INFINITY
             };
@@ -82,18 +89,39 @@ pub fn study(spec: &WorkPrecisionSpec, scheme: Scheme<'_>) -> Vec<Sample> {
 }
 
 type Results = Vec<(String, egui::Color32, Vec<Sample>)>;
+type Key = (WorkPrecisionSpec, u64, Vec<bool>);
+
+/// One method of the study, owned so it can run on the background thread.
+#[derive(Clone)]
+enum Job {
+    Method(crate::deck::widgets::ResolvedMethod),
+    Rk5,
+}
+
+impl Job {
+    fn scheme(&self) -> Scheme<'_> {
+        match self {
+            Job::Method(m) => m.scheme(),
+            Job::Rk5 => Scheme::Tableau(dopri5_fixed()),
+        }
+    }
+}
 
 pub struct WorkPrecision {
     pub spec: WorkPrecisionSpec,
     initial: WorkPrecisionSpec,
-    computed_for: Option<WorkPrecisionSpec>,
+    ode: LiveOde,
+    methods: MethodSet,
+    computed_for: Option<Key>,
     results: Results,
     pending: Option<Receiver<(String, egui::Color32, Vec<Sample>)>>,
 }
 
 impl WorkPrecision {
-    pub fn new(spec: WorkPrecisionSpec) -> Self {
+    pub fn new(spec: WorkPrecisionSpec, deck_path: Option<&FsPath>) -> Self {
         Self {
+            ode: LiveOde::new(&spec.ode, deck_path),
+            methods: MethodSet::new(&spec.methods, deck_path),
             initial: spec.clone(),
             spec,
             computed_for: None,
@@ -102,43 +130,57 @@ impl WorkPrecision {
         }
     }
 
-    fn methods(&self) -> Vec<(String, egui::Color32, Scheme<'static>)> {
-        let mut v: Vec<_> = [MethodId::Euler, MethodId::Midpoint, MethodId::Rk4]
-            .iter()
+    fn jobs(&self) -> Vec<(String, egui::Color32, Job)> {
+        let mut v: Vec<_> = self
+            .methods
+            .shown()
             .map(|m| {
                 (
-                    m.name().to_owned(),
-                    style::method_color(*m),
-                    m.scheme().unwrap(),
+                    m.method.name.clone(),
+                    m.color,
+                    Job::Method(m.method.clone()),
                 )
             })
             .collect();
         if self.spec.rk5 {
-            v.push(("RK5".into(), style::DOPRI, Scheme::Tableau(dopri5_fixed())));
+            v.push(("RK5".into(), style::DOPRI, Job::Rk5));
         }
         v
     }
 
+    fn key(&mut self) -> Key {
+        (
+            self.spec.clone(),
+            self.ode.revision(),
+            self.methods.switches(),
+        )
+    }
+
     /// Starts the study for the current spec (in the background unless DETERMINISTIC).
     fn start(&mut self, ctx: &egui::Context) {
-        self.computed_for = Some(self.spec.clone());
+        self.computed_for = Some(self.key());
         self.results.clear();
-        let jobs = self.methods();
+        self.pending = None;
+        let Some(problem) = self.ode.problem().cloned() else {
+            return;
+        };
+        let jobs = self.jobs();
         let spec = self.spec.clone();
         if DETERMINISTIC.load(Ordering::Relaxed) {
+            let exact = truth(&problem, spec.t_end);
             self.results = jobs
                 .into_iter()
-                .map(|(n, c, t)| (n, c, study(&spec, t)))
+                .map(|(n, c, job)| (n, c, study(&spec, &problem, &exact, job.scheme())))
                 .collect();
-            self.pending = None;
             return;
         }
         let (tx, rx) = channel();
         let ctx = ctx.clone();
         // Dropping the receiver (spec changed again) makes the next send fail: the thread stops.
         std::thread::spawn(move || {
-            for (name, color, tab) in jobs {
-                let r = study(&spec, tab);
+            let exact = truth(&problem, spec.t_end);
+            for (name, color, job) in jobs {
+                let r = study(&spec, &problem, &exact, job.scheme());
                 if tx.send((name, color, r)).is_err() {
                     return;
                 }
@@ -172,8 +214,9 @@ impl WorkPrecision {
 impl SlideWidget for WorkPrecision {
     fn ui(&mut self, ui: &mut egui::Ui) {
         style::projector_text(ui);
-        ui.horizontal(|ui| {
+        ui.horizontal_wrapped(|ui| {
             ui.add(egui::Slider::new(&mut self.spec.levels, 3..=14).text("step sizes"));
+            self.methods.toggles_ui(ui);
             ui.checkbox(
                 &mut self.spec.rk5,
                 egui::RichText::new("RK5").color(style::DOPRI).strong(),
@@ -183,13 +226,21 @@ impl SlideWidget for WorkPrecision {
                 ui.label("computing in the background…");
             }
         });
-        if self.computed_for.as_ref() != Some(&self.spec) {
+        style::problems_ui(ui, self.ode.load_error(), &self.methods.errors);
+        let key = self.key();
+        if self.computed_for.as_ref() != Some(&key) {
             self.start(ui.ctx());
         }
         self.poll();
+        let (name, t0) = self
+            .ode
+            .problem()
+            .map(|p| (p.name.clone(), p.t0))
+            .unwrap_or_default();
         ui.horizontal(|ui| {
             ui.label(format!(
-                "circle over t ∈ [0, {}]; best error per method:",
+                "{name} over t ∈ [{}, {}]; best error per method:",
+                fmt_num(t0).trim_end_matches(".000"),
                 fmt_num(self.spec.t_end)
             ));
             for (name, color, s) in &self.results {
@@ -238,30 +289,58 @@ impl SlideWidget for WorkPrecision {
     }
 
     fn params(&mut self) -> Vec<Param<'_>> {
-        vec![
+        let mut v = vec![
             Param::usize("levels", "step sizes", &mut self.spec.levels, 3, 14),
             Param::bool("rk5", "RK5", &mut self.spec.rk5),
-        ]
+        ];
+        v.extend(self.methods.params());
+        v.extend(self.ode.params());
+        v
     }
 
-    spec_plumbing!(WorkPrecision);
+    fn reset(&mut self) {
+        self.spec = self.initial.clone();
+        self.methods.reset();
+        self.ode.reset();
+    }
+
+    fn spec(&self) -> WidgetSpec {
+        WidgetSpec::WorkPrecision(self.spec.clone())
+    }
+
+    fn ode(&mut self) -> Option<&mut LiveOde> {
+        Some(&mut self.ode)
+    }
+
+    fn problems(&self) -> Vec<String> {
+        style::problem_lines(self.ode.load_error(), &self.methods.errors)
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
+    fn deck() -> &'static FsPath {
+        FsPath::new(concat!(env!("CARGO_MANIFEST_DIR"), "/slides/lecture.ron"))
+    }
+
+    fn spec(levels: usize) -> WorkPrecisionSpec {
+        ron::from_str(&format!(
+            "(ode: File(\"problems/circle.ron\"), t_end: 10.0, levels: {levels})"
+        ))
+        .unwrap()
+    }
+
     #[test]
     fn rk5_is_fifth_order_and_beats_rk4_per_evaluation_at_high_accuracy() {
-        let spec = WorkPrecisionSpec {
-            t_end: 10.0,
-            levels: 6,
-            rk5: true,
-        };
-        let rk5 = study(&spec, Scheme::Tableau(dopri5_fixed()));
+        let spec = spec(6);
+        let p = Problem::load(deck().with_file_name("problems/circle.ron")).unwrap();
+        let exact = p.exact(10.0).unwrap();
+        let rk5 = study(&spec, &p, &exact, Scheme::Tableau(dopri5_fixed()));
         let order = (rk5[2].error / rk5[3].error).log2();
         assert!((order - 5.0).abs() < 0.3, "{order}");
-        let rk4 = study(&spec, Scheme::Method(crate::ode::Method::Rk4));
+        let rk4 = study(&spec, &p, &exact, Scheme::Method(crate::ode::Method::Rk4));
         // at ~the same work, RK5's error is smaller
         assert!(rk5[3].error < rk4[3].error);
     }
@@ -269,22 +348,13 @@ mod tests {
     #[test]
     fn background_study_delivers_without_blocking_the_frame() {
         let ctx = egui::Context::default();
-        let mut w = WorkPrecision::new(WorkPrecisionSpec {
-            t_end: 10.0,
-            levels: 12,
-            rk5: true,
-        });
-        let t = Instant::now();
+        let mut w = WorkPrecision::new(spec(12), Some(deck()));
         w.start(&ctx);
-        let start_cost = t.elapsed();
         assert!(w.busy());
         while w.busy() {
             w.poll();
             std::thread::sleep(std::time::Duration::from_millis(5));
         }
         assert_eq!(w.results.len(), 4);
-        // the study itself is far longer than starting it (no assertion on wall time beyond
-        // "starting returned before any result existed")
-        let _ = start_cost;
     }
 }

@@ -2,16 +2,15 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::methods::MethodId;
-use super::problems::Field1;
+use super::methods::{MethodRef, default_methods};
+use super::ode::OdeSource;
 
+/// `Convergence((ode: File("problems/forced.ron"), t_end: 4.0, methods: [Euler, Midpoint, Rk4,
+/// Tableau("tableaux/rk4-typo.ron")]))`: error at `t_end` from the problem's start.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ConvergenceSpec {
-    #[serde(default = "default_field")]
-    pub field: Field1,
-    #[serde(default = "default_x0")]
-    pub x0: f64,
+    pub ode: OdeSource,
     #[serde(default = "default_t_end")]
     pub t_end: f64,
     /// Largest step; each further point halves it.
@@ -20,18 +19,7 @@ pub struct ConvergenceSpec {
     #[serde(default = "default_levels")]
     pub levels: usize,
     #[serde(default = "default_methods")]
-    pub methods: Vec<MethodId>,
-    /// Also show the notes' RK4 with the k4 typo.
-    #[serde(default)]
-    pub typo: bool,
-}
-
-pub fn default_field() -> Field1 {
-    Field1::Forced
-}
-
-pub fn default_x0() -> f64 {
-    1.5
+    pub methods: Vec<MethodRef>,
 }
 
 pub fn default_t_end() -> f64 {
@@ -44,8 +32,4 @@ pub fn default_h_max() -> f64 {
 
 pub fn default_levels() -> usize {
     8
-}
-
-pub fn default_methods() -> Vec<MethodId> {
-    vec![MethodId::Euler, MethodId::Midpoint, MethodId::Rk4]
 }

@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 pub mod convergence;
 pub mod methods;
 pub mod neptune;
-pub mod problems;
+pub mod ode;
 pub mod rigid_body;
 pub mod slope_field;
 pub mod spiral;
@@ -16,11 +16,11 @@ pub mod taylor;
 pub mod work_precision;
 
 pub use convergence::ConvergenceSpec;
-pub use methods::MethodId;
-pub use neptune::{NeptuneProblem, NeptuneSpec};
-pub use problems::{Field1, Field2};
+pub use methods::{MethodRef, ResolvedMethod};
+pub use neptune::NeptuneSpec;
+pub use ode::{LoadedOde, OdeError, OdeSource};
 pub use rigid_body::RigidBodySpec;
-pub use slope_field::{FieldKind, SlopeFieldSpec};
+pub use slope_field::SlopeFieldSpec;
 pub use spiral::SpiralSpec;
 pub use stability::StabilitySpec;
 pub use step_construction::StepSpec;
@@ -36,7 +36,7 @@ pub enum WidgetSpec {
     StepConstruction(StepSpec),
     /// 3. Euler turns the circle x'' = −x into a spiral (the "inaccuracy" picture).
     Spiral(SpiralSpec),
-    /// 4. "Off to Neptune": y' = λy or the oscillator with h across the stability limit.
+    /// 4. "Off to Neptune": y' = λy (or any ODE) with h across the stability limit.
     Neptune(NeptuneSpec),
     /// 5. Taylor polynomials of order 1, 2, 3, … around a point.
     Taylor(TaylorSpec),
@@ -63,6 +63,35 @@ impl WidgetSpec {
             WidgetSpec::WorkPrecision(_) => "work-precision",
             WidgetSpec::Stability(_) => "stability",
             WidgetSpec::RigidBody(_) => "rigid-body",
+        }
+    }
+}
+
+impl WidgetSpec {
+    /// The widget's ODE source, if it draws an ODE.
+    pub fn ode(&self) -> Option<&OdeSource> {
+        match self {
+            WidgetSpec::SlopeField(s) => Some(&s.ode),
+            WidgetSpec::StepConstruction(s) => Some(&s.ode),
+            WidgetSpec::Spiral(s) => Some(&s.ode),
+            WidgetSpec::Neptune(s) => Some(&s.ode),
+            WidgetSpec::Convergence(s) => Some(&s.ode),
+            WidgetSpec::WorkPrecision(s) => Some(&s.ode),
+            WidgetSpec::Taylor(_) | WidgetSpec::Stability(_) | WidgetSpec::RigidBody(_) => None,
+        }
+    }
+
+    /// The methods the widget names (tableau files to check), if it has a `methods:` list.
+    pub fn methods(&self) -> &[MethodRef] {
+        match self {
+            WidgetSpec::SlopeField(s) => &s.methods,
+            WidgetSpec::Spiral(s) => &s.methods,
+            WidgetSpec::Neptune(s) => &s.methods,
+            WidgetSpec::Convergence(s) => &s.methods,
+            WidgetSpec::WorkPrecision(s) => &s.methods,
+            WidgetSpec::Stability(s) => &s.methods,
+            WidgetSpec::StepConstruction(s) => std::slice::from_ref(&s.method),
+            WidgetSpec::Taylor(_) | WidgetSpec::RigidBody(_) => &[],
         }
     }
 }

@@ -2,28 +2,21 @@
 
 use serde::{Deserialize, Serialize};
 
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub enum NeptuneProblem {
-    /// y' = λy with real λ < 0 (e.g. −5): decays; explicit methods blow up beyond their limit.
-    Decay { lambda: f64 },
-    /// x'' = −x: every Euler step gains energy; RK4 holds up to h = 2√2.
-    Oscillator,
-}
+use super::methods::MethodRef;
+use super::ode::OdeSource;
 
+/// `Neptune((ode: File("problems/decay.ron"), h: 0.3, t_end: 4.0, methods: [Euler, Rk4]))`: the
+/// first variable against t, with the axes held at the true solution's scale.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct NeptuneSpec {
-    pub problem: NeptuneProblem,
+    pub ode: OdeSource,
     #[serde(default = "default_h")]
     pub h: f64,
     #[serde(default = "default_t_end")]
     pub t_end: f64,
-    #[serde(default = "yes")]
-    pub euler: bool,
-    #[serde(default)]
-    pub midpoint: bool,
-    #[serde(default)]
-    pub rk4: bool,
+    #[serde(default = "default_methods")]
+    pub methods: Vec<MethodRef>,
 }
 
 pub fn default_h() -> f64 {
@@ -34,6 +27,6 @@ pub fn default_t_end() -> f64 {
     6.0
 }
 
-fn yes() -> bool {
-    true
+pub fn default_methods() -> Vec<MethodRef> {
+    vec![MethodRef::Euler]
 }

@@ -2,38 +2,38 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::problems::{Field1, Field2};
+use super::methods::{MethodRef, default_methods};
+use super::ode::OdeSource;
 
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub enum FieldKind {
-    /// ẋ = f(x, t), drawn in the t–x plane; `start` is (t₀, x₀).
-    OneD(Field1),
-    /// (ẋ, ẏ) = f(x, y), drawn in the phase plane; `start` is (x₀, y₀).
-    Phase(Field2),
-}
-
+/// `SlopeField((ode: File("problems/forced.ron"), h: 0.5, t_end: 8.0))`: a 1-D problem draws in
+/// the t–x plane, more variables in the phase plane of the first two (or of `plot`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SlopeFieldSpec {
-    pub field: FieldKind,
-    pub start: (f64, f64),
+    pub ode: OdeSource,
+    /// Where the paths start: (t₀, x₀) in the t–x plane, (x₀, y₀) in the phase plane. Default:
+    /// the problem's `t0` and `initial`.
+    #[serde(default)]
+    pub start: Option<(f64, f64)>,
     #[serde(default = "default_h")]
     pub h: f64,
-    /// End of the integration: a time for both kinds (for `OneD`, the right edge of the path).
+    /// End time of the integration (for 1-D problems, the right edge of the paths).
     pub t_end: f64,
-    /// Visible window: (x_min, x_max, y_min, y_max) in plot coordinates.
-    pub view: (f64, f64, f64, f64),
-    #[serde(default = "yes")]
-    pub euler: bool,
-    #[serde(default = "yes")]
-    pub midpoint: bool,
-    #[serde(default = "yes")]
-    pub rk4: bool,
+    /// Visible window (x_min, x_max, y_min, y_max) in plot coordinates. Default: around the
+    /// exact (or reference) path.
+    #[serde(default)]
+    pub view: Option<(f64, f64, f64, f64)>,
+    #[serde(default = "default_methods")]
+    pub methods: Vec<MethodRef>,
+    /// Draw the exact solution (or a fine reference) too.
     #[serde(default = "yes")]
     pub exact: bool,
     /// Slope marks per axis.
     #[serde(default = "default_grid")]
     pub grid: usize,
+    /// The two variables of the phase plane, e.g. `plot: Some(("x", "v"))`.
+    #[serde(default)]
+    pub plot: Option<(String, String)>,
 }
 
 pub fn default_h() -> f64 {
@@ -44,6 +44,6 @@ pub fn default_grid() -> usize {
     21
 }
 
-fn yes() -> bool {
+pub fn yes() -> bool {
     true
 }

@@ -2,21 +2,18 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::methods::MethodId;
+use super::methods::{MethodRef, default_methods};
 use crate::ode::Tableau;
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct StabilitySpec {
     #[serde(default = "default_methods")]
-    pub methods: Vec<MethodId>,
+    /// Built-ins and tableau files: `[Euler, Midpoint, Rk4, Tableau("tableaux/rk4-typo.ron")]`.
+    pub methods: Vec<MethodRef>,
     /// Further methods, e.g. written out in the deck: `(name: "Ralston", a: [...], b: [...], c: [...])`.
     #[serde(default)]
     pub tableaux: Vec<Tableau>,
-    /// Tableau files (RON, as `lectern solve` reads them), relative to the deck's folder,
-    /// e.g. `["tableaux/rk4-typo.ron"]`.
-    #[serde(default)]
-    pub files: Vec<String>,
     /// Visible window (re_min, re_max, im_min, im_max).
     #[serde(default = "default_view")]
     pub view: (f64, f64, f64, f64),
@@ -25,10 +22,6 @@ pub struct StabilitySpec {
     pub lambda: Option<(f64, f64)>,
     #[serde(default = "default_h")]
     pub h: f64,
-}
-
-pub fn default_methods() -> Vec<MethodId> {
-    vec![MethodId::Euler, MethodId::Midpoint, MethodId::Rk4]
 }
 
 pub fn default_view() -> (f64, f64, f64, f64) {

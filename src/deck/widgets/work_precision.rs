@@ -2,15 +2,23 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::methods::{MethodRef, default_methods};
+use super::ode::OdeSource;
+
+/// `WorkPrecision((ode: File("problems/circle.ron"), t_end: 10.0, levels: 10, rk5: true))`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct WorkPrecisionSpec {
-    /// Integration interval length (the problem is the circle, exact solution known).
+    pub ode: OdeSource,
+    /// Integration from the problem's t0 to this time.
     #[serde(default = "default_t_end")]
     pub t_end: f64,
-    /// Steps sizes: h = h_max / 2^k, k = 0..levels.
+    /// Step sizes: h = 1 / 2^k, k = 0..levels.
     #[serde(default = "default_levels")]
     pub levels: usize,
+    #[serde(default = "default_methods")]
+    pub methods: Vec<MethodRef>,
+    /// Also Dormand–Prince's fifth-order weights as a fixed-step method.
     #[serde(default = "yes")]
     pub rk5: bool,
 }
@@ -23,6 +31,6 @@ pub fn default_levels() -> usize {
     10
 }
 
-fn yes() -> bool {
+pub fn yes() -> bool {
     true
 }

@@ -1,0 +1,180 @@
+//! Where an ODE widget's equation comes from: `ode: File("problems/forced.ron")` (a problem
+//! file, relative to the deck and confined to the project) or `ode: Inline((vars: ["x"],
+//! rhs: ["x*sin(t) - x^3/3"], initial: [0.8]))` with exactly the fields of a problem file
+//! ([`ProblemDef`]). [`OdeSource::load`] reads and compiles it; a fault says where it is, so the
+//! deck loader can put it at the deck's own line and column ([`OdeError::diagnostic`]).
+
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+
+use crate::diag::Diagnostic;
+use crate::ode::problem::{self, DefError, DefPos, Problem, ProblemDef};
+use crate::paths;
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum OdeSource {
+    /// A problem file (as `lectern solve` reads it), relative to the deck's folder.
+    File(String),
+    /// The problem written in the deck.
+    Inline(ProblemDef),
+}
+
+/// A loaded source: the definition as written, compiled, and the file it came from.
+#[derive(Debug, Clone)]
+pub struct LoadedOde {
+    pub def: ProblemDef,
+    pub problem: Problem,
+    /// The problem file, for `File` sources (what a write-back edits, what a reload watches).
+    pub file: Option<PathBuf>,
+}
+
+/// Why a source did not load.
+#[derive(Debug, Clone, PartialEq)]
+pub enum OdeError {
+    /// A fault in the deck's own text: in the inline definition at `pos`, or (for `File`) the
+    /// path itself (`pos` = [`DefPos::Whole`]).
+    InDeck(DefError),
+    /// A fault inside the problem file, with the file's own position.
+    InFile(Diagnostic),
+}
+
+impl OdeError {
+    /// One line for the widget and the presenter: what is wrong, and where inside the value.
+    pub fn message(&self) -> String {
+        match self {
+            OdeError::InDeck(e) => e.message.clone(),
+            OdeError::InFile(d) => d.to_string(),
+        }
+    }
+
+    /// The fault as a diagnostic of the deck: `ode_at` is the [`crate::ron_tree`] path of the
+    /// `ode:` value in `deck_text` (e.g. `slides[3].body[1].ode`). Faults inside a problem file
+    /// keep that file's position.
+    pub fn diagnostic(&self, deck_text: &str, ode_at: &str, deck_path: &Path) -> Diagnostic {
+        match self {
+            OdeError::InFile(d) => d.clone(),
+            // the path of a File source: the string inside File(..)
+            OdeError::InDeck(e) => problem::diagnostic_at(deck_text, ode_at, deck_path, e),
+        }
+    }
+}
+
+/// `written` (a path in the deck) as a file, confined to the project of `deck_path` (or of the
+/// current folder when there is no deck file, as in tests).
+pub fn resolve_path(deck_path: Option<&Path>, written: &str) -> Result<PathBuf, String> {
+    let r = match deck_path {
+        Some(deck) => paths::resolve_for(deck, written),
+        None => paths::resolve(Path::new("."), Path::new("."), written),
+    };
+    r.map_err(|e| e.to_string())
+}
+
+impl OdeSource {
+    /// The definition (read from its file for `File`), not yet compiled.
+    pub fn definition(
+        &self,
+        deck_path: Option<&Path>,
+    ) -> Result<(ProblemDef, Option<PathBuf>), OdeError> {
+        match self {
+            OdeSource::Inline(def) => Ok((def.clone(), None)),
+            OdeSource::File(written) => {
+                let file = resolve_path(deck_path, written).map_err(|m| {
+                    OdeError::InDeck(DefError {
+                        pos: DefPos::Whole,
+                        message: format!("ode: {m}"),
+                    })
+                })?;
+                if !file.is_file() {
+                    return Err(OdeError::InDeck(DefError {
+                        pos: DefPos::Whole,
+                        message: format!(
+                            "ode: no problem file {} (from `{written}`)",
+                            file.display()
+                        ),
+                    }));
+                }
+                let (_, mut def) = problem::read_def(&file).map_err(OdeError::InFile)?;
+                if def.name.is_empty() {
+                    def.name = Path::new(written)
+                        .file_stem()
+                        .map(|s| s.to_string_lossy().into_owned())
+                        .unwrap_or_default();
+                }
+                Ok((def, Some(file)))
+            }
+        }
+    }
+
+    /// Reads (for `File`) and compiles the problem.
+    pub fn load(&self, deck_path: Option<&Path>) -> Result<LoadedOde, OdeError> {
+        let (def, file) = self.definition(deck_path)?;
+        let named = file
+            .clone()
+            .or_else(|| deck_path.map(Path::to_path_buf))
+            .unwrap_or_default();
+        let problem = def.compile(&named).map_err(|e| match &file {
+            // a fault inside a problem file: at its line and column there
+            Some(f) => OdeError::InFile(match std::fs::read_to_string(f) {
+                Ok(text) => problem::diagnostic_at(&text, "", f, &e),
+                Err(_) => Diagnostic::whole_file(f, e.message.clone()),
+            }),
+            None => OdeError::InDeck(e),
+        })?;
+        Ok(LoadedOde { def, problem, file })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn deck() -> &'static Path {
+        Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/slides/lecture.ron"))
+    }
+
+    #[test]
+    fn file_and_inline_sources_load_the_same_problem() {
+        let file = OdeSource::File("problems/harmonic.ron".into());
+        let a = file.load(Some(deck())).unwrap();
+        assert!(
+            a.file
+                .as_ref()
+                .unwrap()
+                .ends_with("slides/problems/harmonic.ron")
+        );
+        let inline: OdeSource = ron::from_str(
+            r#"Inline((vars: ["x", "v"], rhs: ["v", "-w*w*x"], params: {"w": 1.0}, initial: [1.0, 0.0]))"#,
+        )
+        .unwrap();
+        let b = inline.load(Some(deck())).unwrap();
+        assert_eq!(a.def.rhs, b.def.rhs);
+        assert!(b.file.is_none() && b.def.name.is_empty());
+    }
+
+    #[test]
+    fn faults_say_where_they_are() {
+        let e = OdeSource::File("../../outside.ron".into())
+            .load(Some(deck()))
+            .unwrap_err();
+        assert!(
+            matches!(&e, OdeError::InDeck(d) if d.pos == DefPos::Whole),
+            "{e:?}"
+        );
+        assert!(
+            e.message().contains("outside the project"),
+            "{}",
+            e.message()
+        );
+        let e = OdeSource::File("problems/nope.ron".into())
+            .load(Some(deck()))
+            .unwrap_err();
+        assert!(e.message().contains("no problem file"), "{}", e.message());
+        let bad: OdeSource =
+            ron::from_str(r#"Inline((vars: ["x"], rhs: ["x*("], initial: [1.0]))"#).unwrap();
+        match bad.load(None).unwrap_err() {
+            OdeError::InDeck(d) => assert_eq!(d.pos, DefPos::InExpr("rhs", 0, 3)),
+            other => panic!("{other:?}"),
+        }
+    }
+}
