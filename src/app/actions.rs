@@ -11,8 +11,18 @@ impl LecternApp {
     /// belong to the number, not to bookmarks.
     pub(super) fn handle_keys(&mut self, ctx: &egui::Context) {
         let events = ctx.input(|i| i.events.clone());
+        // a text field (the presenter's equation editor) has the keyboard: keys are text
+        let editing = ctx.text_edit_focused();
         let mut handled = Vec::with_capacity(events.len());
         for event in &events {
+            if editing {
+                let action = keys::while_editing(event);
+                handled.push(action.is_some());
+                if let Some(action) = action {
+                    self.apply(action, ctx);
+                }
+                continue;
+            }
             let typing = matches!(self.overlay, Overlay::Goto(_));
             handled.push(keys::is_handled(event, typing));
             for action in keys::actions(std::slice::from_ref(event), typing) {

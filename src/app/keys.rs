@@ -73,6 +73,20 @@ pub fn actions(events: &[Event], typing_number: bool) -> Vec<Action> {
         .collect()
 }
 
+/// While a text field has the keyboard (the presenter typing an equation), the only key the
+/// app takes is Ctrl+S (write back); everything else, digits and letters included, is text.
+pub fn while_editing(event: &Event) -> Option<Action> {
+    match event {
+        Event::Key {
+            key: Key::S,
+            pressed: true,
+            modifiers,
+            ..
+        } if modifiers.command || modifiers.ctrl => Some(Action::WriteBack),
+        _ => None,
+    }
+}
+
 /// Whether the app handles `event` (so it can be taken out before widgets see it).
 pub fn is_handled(event: &Event, typing_number: bool) -> bool {
     action(event, typing_number).is_some()
@@ -216,6 +230,18 @@ mod tests {
         assert_eq!(
             actions(&[press(Key::Num3, Modifiers::CTRL)], false),
             vec![BookmarkStore(3)]
+        );
+    }
+
+    #[test]
+    fn while_typing_only_ctrl_s_is_a_key() {
+        let none = Modifiers::NONE;
+        for k in [Key::R, Key::P, Key::Num1, Key::Space, Key::ArrowRight, Key::B] {
+            assert_eq!(while_editing(&press(k, none)), None, "{k:?}");
+        }
+        assert_eq!(
+            while_editing(&press(Key::S, Modifiers::CTRL)),
+            Some(WriteBack)
         );
     }
 

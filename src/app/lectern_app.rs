@@ -133,6 +133,11 @@ impl LecternApp {
             self.pacing
                 .set_deck(self.session.deck(), self.session.nav().index());
         }
+        // problem files the widgets read (`ode: File(..)`) reload the same way
+        let others = self.session.take_other_changes();
+        if !others.is_empty() {
+            self.states.reload_problem_files(&others);
+        }
     }
 
     /// One whole frame: reload, keys, the slide or scene, overlays.

@@ -6,6 +6,7 @@ mod blocks;
 mod files;
 mod images;
 pub mod keys;
+mod ode_editor;
 mod lectern_app;
 pub mod offscreen;
 pub mod overlays;

@@ -106,6 +106,7 @@ pub fn presenter_ui(
                 if state.widget_count() == 0 {
                     ui.label(RichText::new("no live widgets on this slide").color(palette.dim));
                 }
+                super::ode_editor::ode_editor_ui(ui, state);
                 state.controls_ui(ui);
             });
         }
@@ -217,7 +218,10 @@ pub fn presenter_ui(
             .max_rect(notes_rect),
     );
     egui::ScrollArea::vertical().show(&mut child, |ui| {
-        for problem in info.problems {
+        // widgets of this slide whose equation or tableau did not load, at the deck's line:col
+        let widget_problems = deck.widget_problems.iter().filter(|p| p.slide == index);
+        let widget_lines = widget_problems.map(|p| p.diagnostic.to_string());
+        for problem in widget_lines.chain(info.problems.iter().cloned()) {
             ui.label(
                 RichText::new(problem)
                     .font(egui::FontId::monospace(text * 0.7))

@@ -287,6 +287,13 @@ impl DeckState {
         self.slides.get_mut(slide.key())
     }
 
+    /// Problem files changed on disk: the widgets that read them re-read them.
+    pub fn reload_problem_files(&mut self, changed: &[std::path::PathBuf]) {
+        for state in self.slides.values_mut() {
+            state.reload_problem_files(changed);
+        }
+    }
+
     /// After a reload: forget the states of slides that no longer exist. Widgets whose spec
     /// changed are recreated lazily by [`SlideState::widget`].
     pub fn retain_deck(&mut self, deck: &Deck) {

@@ -23,6 +23,10 @@ pub struct Args {
     /// `Ctrl+S` while presenting), so the images show exactly what was presented.
     #[arg(long, value_name = "FILE")]
     pub with_tweaks: Option<PathBuf>,
+    /// Also write every plot widget's computed points as CSV, DIR/slide-NN-wK.csv
+    /// (header `series,t,<vars>`, one row per integrator step).
+    #[arg(long)]
+    pub data: bool,
 }
 
 /// "1920x1080" → [1920, 1080].
@@ -55,6 +59,14 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     // A still image cannot wait for a background study: work-precision runs on this thread
     // (timings then from a fixed cost per f-evaluation, so exports are reproducible).
     crate::widgets::work_precision::DETERMINISTIC.store(true, std::sync::atomic::Ordering::Relaxed);
+    if args.data {
+        let files = super::export_data::write_data(&deck, &args.out, &tweaks)?;
+        eprintln!(
+            "lectern: wrote the data of {} plot widgets to {}",
+            files.len(),
+            args.out.display()
+        );
+    }
     let mut renderer = OffscreenRenderer::new()?;
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create {}", args.out.display()))?;

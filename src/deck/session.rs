@@ -15,6 +15,8 @@ pub struct DeckSession {
     watcher: Option<DirWatcher>,
     /// The deck a successful reload replaced, for whoever wants to compare (tweaks).
     replaced: Option<Deck>,
+    /// Other files the watcher saw change (problem files widgets read), until taken.
+    other_changes: Vec<PathBuf>,
 }
 
 impl DeckSession {
@@ -33,6 +35,7 @@ impl DeckSession {
             nav,
             watcher: None,
             replaced: None,
+            other_changes: Vec::new(),
         })
     }
 
@@ -74,6 +77,9 @@ impl DeckSession {
 
     /// Applies a batch of changed paths (as a watcher reports them).
     pub fn apply_changed(&mut self, changed: &[PathBuf]) -> Option<Reloaded> {
+        let deck = self.live.path().to_path_buf();
+        let others = changed.iter().filter(|p| !p.ends_with(&deck) && !deck.ends_with(p));
+        self.other_changes.extend(others.cloned());
         if changed.is_empty() || !self.live.is_affected_by(changed) {
             return None;
         }
@@ -117,6 +123,12 @@ impl DeckSession {
     pub fn navigate<R>(&mut self, f: impl FnOnce(&mut Nav, &Deck) -> R) -> R {
         let deck = self.live.value().expect("a session always holds a deck");
         f(&mut self.nav, deck)
+    }
+
+    /// Files other than the deck that changed since the last call (e.g. problem files that
+    /// widgets read: they re-read them).
+    pub fn take_other_changes(&mut self) -> Vec<PathBuf> {
+        std::mem::take(&mut self.other_changes)
     }
 
     /// The deck the last successful reload replaced (once; then `None`).

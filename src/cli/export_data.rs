@@ -1,0 +1,40 @@
+//! `lectern export --data`: every plot widget's computed points as CSV, for students and tests to
+//! check the numbers: `DIR/slide-NN-wK.csv` (K counts the slide's widgets from 1, in file order),
+//! long format with the header `series,t,<var1>[,<var2>…]`, one row per integrator step (not the
+//! decimated draw data); series `euler`, `midpoint`, `rk4`, a tableau file's stem, and `exact`
+//! (the closed form at the reference's times) or `reference` (a fine RK4 solve, when there is no
+//! closed form). Widgets without paths (Taylor, convergence, work-precision, stability, rigid
+//! body) write no file.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::Context as _;
+
+use crate::app::SlideState;
+use crate::app::tweak_file::TweakFile;
+use crate::deck::Deck;
+
+/// Writes the CSV files of every plot widget of `deck` into `dir`, with `tweaks` applied (the
+/// values the presenter saved, as the PNGs show them); returns the files written.
+pub fn write_data(deck: &Deck, dir: &Path, tweaks: &TweakFile) -> anyhow::Result<Vec<PathBuf>> {
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    let digits = deck.slides.len().to_string().len().max(2);
+    let mut written = Vec::new();
+    for (i, slide) in deck.slides.iter().enumerate() {
+        let mut state = SlideState::default();
+        state.set_deck_path(deck.path.as_deref());
+        state.ensure_widgets(slide);
+        // warnings about stale tweaks are printed by the PNG export
+        let _ = tweaks.apply(deck, i, &mut state);
+        for (k, (block, _)) in slide.widgets().into_iter().enumerate() {
+            let Some(data) = state.widget_at(&block).and_then(|w| w.data()) else {
+                continue;
+            };
+            let file = dir.join(format!("slide-{:0digits$}-w{}.csv", i + 1, k + 1));
+            std::fs::write(&file, data.to_csv())
+                .with_context(|| format!("cannot write {}", file.display()))?;
+            written.push(file);
+        }
+    }
+    Ok(written)
+}
