@@ -236,7 +236,14 @@ mod tests {
     #[test]
     fn while_typing_only_ctrl_s_is_a_key() {
         let none = Modifiers::NONE;
-        for k in [Key::R, Key::P, Key::Num1, Key::Space, Key::ArrowRight, Key::B] {
+        for k in [
+            Key::R,
+            Key::P,
+            Key::Num1,
+            Key::Space,
+            Key::ArrowRight,
+            Key::B,
+        ] {
             assert_eq!(while_editing(&press(k, none)), None, "{k:?}");
         }
         assert_eq!(

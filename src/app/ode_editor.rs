@@ -47,7 +47,11 @@ pub fn equation_ui(ui: &mut egui::Ui, kind: &str, ode: &mut LiveOde) {
         })
         .chain(exact.iter().enumerate().map(|(k, f)| {
             let var = def.vars.get(k).cloned().unwrap_or_default();
-            (ExprSlot::Exact(k), format!("exact {var}(t) ="), f.text.clone())
+            (
+                ExprSlot::Exact(k),
+                format!("exact {var}(t) ="),
+                f.text.clone(),
+            )
         }))
         .collect();
     let mono = egui::TextStyle::Monospace;
@@ -85,8 +89,10 @@ fn error_ui(ui: &mut egui::Ui, text: &str, msg: &str, col: usize) {
         String::new()
     };
     ui.label(
-        RichText::new(format!("{shown}{caret}\ncolumn {col}: {msg} (the last good equation stays)"))
-            .monospace()
-            .color(ERROR),
+        RichText::new(format!(
+            "{shown}{caret}\ncolumn {col}: {msg} (the last good equation stays)"
+        ))
+        .monospace()
+        .color(ERROR),
     );
 }

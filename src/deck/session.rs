@@ -78,7 +78,9 @@ impl DeckSession {
     /// Applies a batch of changed paths (as a watcher reports them).
     pub fn apply_changed(&mut self, changed: &[PathBuf]) -> Option<Reloaded> {
         let deck = self.live.path().to_path_buf();
-        let others = changed.iter().filter(|p| !p.ends_with(&deck) && !deck.ends_with(p));
+        let others = changed
+            .iter()
+            .filter(|p| !p.ends_with(&deck) && !deck.ends_with(p));
         self.other_changes.extend(others.cloned());
         if changed.is_empty() || !self.live.is_affected_by(changed) {
             return None;

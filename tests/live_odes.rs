@@ -1,0 +1,467 @@
+//! Live ODEs: an equation written inline, in a problem file or as a native closure gives the
+//! same paths (and the same as `lectern solve`); `export --data` writes exactly the integrator's
+//! steps; typing on the presenter's side changes the plot, keeps the last good equation on an
+//! error and writes back with Ctrl+S; every fault in a deck's equation is reported at the deck's
+//! line and column; hostile input gives a message or a "diverged" marker, never a panic.
+
+use std::path::{Path, PathBuf};
+
+use lectern::deck::widgets::WidgetSpec;
+use lectern::deck::{Deck, load_deck, parse_deck};
+use lectern::widgets::{ExprSlot, PlotData};
+
+mod common;
+
+fn bundled() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("slides/lecture.ron")
+}
+
+/// A widget from deck-style RON (implicit `Some`), its files resolved as in the bundled deck.
+fn spec(ron_text: &str) -> WidgetSpec {
+    ron::Options::default()
+        .with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME)
+        .from_str(ron_text)
+        .unwrap_or_else(|e| panic!("{ron_text}: {e}"))
+}
+
+fn data(ron_text: &str) -> PlotData {
+    spec(ron_text)
+        .instantiate_in(Some(&bundled()))
+        .data()
+        .expect("a plot widget has data")
+}
+
+fn series<'a>(d: &'a PlotData, name: &str) -> &'a lectern::widgets::methods::Path {
+    &d.series
+        .iter()
+        .find(|(n, _)| n == name)
+        .unwrap_or_else(|| panic!("no series {name}"))
+        .1
+}
+
+/// The forced decay x' = cos t − x by hand: Euler, midpoint and RK4 from (t0, x0).
+fn hand_loop(method: &str, t0: f64, x0: f64, h: f64, n: usize) -> Vec<(f64, f64)> {
+    let f = |t: f64, x: f64| t.cos() - x;
+    let mut out = vec![(t0, x0)];
+    let (mut t, mut x) = (t0, x0);
+    for _ in 0..n {
+        x = match method {
+            "euler" => x + h * f(t, x),
+            "midpoint" => x + h * f(t + h / 2.0, x + h / 2.0 * f(t, x)),
+            "rk4" => {
+                let k1 = f(t, x);
+                let k2 = f(t + h / 2.0, x + h / 2.0 * k1);
+                let k3 = f(t + h / 2.0, x + h / 2.0 * k2);
+                let k4 = f(t + h, x + h * k3);
+                x + h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
+            }
+            other => panic!("{other}"),
+        };
+        t = t0 + (out.len() as f64) * h;
+        out.push((t, x));
+    }
+    out
+}
+
+const FORCED_INLINE: &str = r#"ode: Inline((vars: ["x"], rhs: ["cos(t) - x"], initial: [1.5], exact: Some(["(cos(t) + sin(t))/2 + (x - (cos(t0) + sin(t0))/2)*exp(-(t - t0))"])))"#;
+
+#[test]
+fn inline_preset_native_and_lectern_solve_give_the_same_paths() {
+    let rest = "start: (0.0, 1.5), h: 0.5, t_end: 8.0, view: (0.0, 8.0, -1.5, 2.0)";
+    let file = data(&format!(
+        "SlopeField((ode: File(\"problems/forced.ron\"), {rest}))"
+    ));
+    let inline = data(&format!("SlopeField(({FORCED_INLINE}, {rest}))"));
+    assert_eq!(file.vars, vec!["x"]);
+    for m in ["euler", "midpoint", "rk4"] {
+        let (a, b) = (series(&file, m), series(&inline, m));
+        let native = hand_loop(m, 0.0, 1.5, 0.5, 16);
+        assert_eq!(a.ts.len(), native.len(), "{m}");
+        for ((p, q), (t, x)) in a.xs.iter().zip(&b.xs).zip(&native) {
+            assert!((p[0] - q[0]).abs() <= 1e-12, "{m}: file vs inline");
+            assert!(
+                (p[0] - x).abs() <= 1e-12,
+                "{m}: {} vs native {x} at t = {t}",
+                p[0]
+            );
+        }
+        for (ta, (t, _)) in a.ts.iter().zip(&native) {
+            assert!((ta - t).abs() <= 1e-12);
+        }
+    }
+    // the exact series is the closed form at the reference's times
+    let exact = series(&file, "exact");
+    let t = exact.ts[700];
+    let want = (t.cos() + t.sin()) / 2.0 + (1.5 - 0.5) * (-t).exp();
+    assert!((exact.xs[700][0] - want).abs() < 1e-12);
+
+    // `lectern solve` on the preset: the same RK4 steps
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_lectern"))
+        .args([
+            "solve",
+            "slides/problems/forced.ron",
+            "--method",
+            "rk4",
+            "--h",
+            "0.5",
+        ])
+        .args(["--t-end", "8", "--trajectory"])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let csv = String::from_utf8(out.stdout).unwrap();
+    let rows: Vec<(f64, f64)> = csv
+        .lines()
+        .skip(1)
+        .map(|l| {
+            let v: Vec<f64> = l.split(',').map(|s| s.parse().unwrap()).collect();
+            (v[0], v[1])
+        })
+        .collect();
+    let rk4 = series(&file, "rk4");
+    assert_eq!(rows.len(), rk4.ts.len());
+    for ((t, x), (ta, xa)) in rows.iter().zip(rk4.ts.iter().zip(&rk4.xs)) {
+        assert!((t - ta).abs() <= 1e-12 && (x - xa[0]).abs() <= 1e-12);
+    }
+}
+
+/// A temporary project with one deck (`slides/talk.ron`) holding `body`.
+fn project(body: &str) -> (tempfile::TempDir, PathBuf) {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir_all(dir.path().join("slides")).unwrap();
+    let path = dir.path().join("slides/talk.ron");
+    let text = format!(
+        "(\n    title: \"t\",\n    slides: [\n        (\n            id: \"s\",\n            title: \"Slide\",\n            body: [\n                {body},\n            ],\n        ),\n    ],\n)\n"
+    );
+    std::fs::write(&path, text).unwrap();
+    (dir, path)
+}
+
+fn parse_csv(text: &str) -> Vec<(String, f64, Vec<f64>)> {
+    text.lines()
+        .skip(1)
+        .map(|l| {
+            let mut it = l.split(',');
+            let name = it.next().unwrap().to_string();
+            let t: f64 = it.next().unwrap().parse().unwrap();
+            (name, t, it.map(|v| v.parse().unwrap()).collect())
+        })
+        .collect()
+}
+
+#[test]
+fn export_data_csv_equals_hand_written_loops() {
+    let (dir, path) = project(&format!(
+        "Widget(SlopeField(({FORCED_INLINE}, start: (0.3, 1.1), h: 0.37, t_end: 5.0)))"
+    ));
+    let deck = load_deck(&path).unwrap();
+    assert!(
+        deck.widget_problems.is_empty(),
+        "{:?}",
+        deck.widget_problems
+    );
+    let out = dir.path().join("out");
+    let files = lectern::cli::export_data::write_data(&deck, &out, &Default::default()).unwrap();
+    assert_eq!(files, vec![out.join("slide-01-w1.csv")]);
+    let text = std::fs::read_to_string(&files[0]).unwrap();
+    assert!(text.starts_with("series,t,x\n"), "{text}");
+    let rows = parse_csv(&text);
+    // from t0 = 0.3 towards 5.0 in whole steps of 0.37: round(4.7 / 0.37) = 13 steps, as the
+    // slide draws them (the paths end at t0 + 13 h = 5.11)
+    for m in ["euler", "midpoint", "rk4"] {
+        let got: Vec<&(String, f64, Vec<f64>)> = rows.iter().filter(|r| r.0 == m).collect();
+        assert_eq!(got.len(), 14, "{m}");
+        let want = hand_loop(m, 0.3, 1.1, 0.37, 13);
+        for (r, (t, x)) in got.iter().zip(&want) {
+            assert!((r.1 - t).abs() <= 1e-12, "{m}: t {} vs {t}", r.1);
+            assert!((r.2[0] - x).abs() <= 1e-12, "{m}: {} vs {x}", r.2[0]);
+        }
+    }
+    assert!(rows.iter().any(|r| r.0 == "exact"));
+}
+
+/// (line, col) of the first occurrence of `needle` in `text`, 1-based, plus `offset` chars.
+fn at(text: &str, needle: &str, offset: usize) -> (usize, usize) {
+    let i = text.find(needle).unwrap_or_else(|| panic!("{needle}"));
+    let before = &text[..i];
+    let line = before.matches('\n').count() + 1;
+    let col = before.rsplit('\n').next().unwrap().chars().count() + 1 + offset;
+    (line, col)
+}
+
+fn problems_of(body: &str) -> (String, Deck) {
+    let (_dir, path) = project(body);
+    let text = std::fs::read_to_string(&path).unwrap();
+    let deck = load_deck(&path).expect("a bad equation does not stop the deck");
+    (text, deck)
+}
+
+#[test]
+fn equation_faults_are_reported_at_the_decks_line_and_column() {
+    // a bad expression: at the faulty character inside the string
+    let (text, deck) = problems_of(
+        r#"Widget(SlopeField((ode: Inline((vars: ["x"], rhs: ["x*sin(t) - q^3/3"], initial: [0.8])), t_end: 5.0)))"#,
+    );
+    let d = &deck.widget_problems[0].diagnostic;
+    assert_eq!((d.line, d.col), at(&text, "q^3", 0), "{d}");
+    assert!(d.message.contains("unknown name `q`"), "{d}");
+    assert!(d.to_string().contains("talk.ron:"), "{d}");
+    // an expression that ends early: at its end
+    let (text, deck) = problems_of(
+        r#"Widget(SlopeField((ode: Inline((vars: ["x"], rhs: ["x*("], initial: [0.8])), t_end: 5.0)))"#,
+    );
+    let d = &deck.widget_problems[0].diagnostic;
+    assert_eq!((d.line, d.col), at(&text, "x*(\"", 3), "{d}");
+    // wrong number of components: at the `rhs` list
+    let (text, deck) = problems_of(
+        r#"Widget(Spiral((ode: Inline((vars: ["x", "y"], rhs: ["-y"], initial: [1.0, 0.0])))))"#,
+    );
+    let d = &deck.widget_problems[0].diagnostic;
+    assert_eq!((d.line, d.col), at(&text, "[\"-y\"]", 0), "{d}");
+    assert!(d.message.contains("`rhs` has 1"), "{d}");
+    // an escaped string: the column still lands on the character
+    let (text, deck) = problems_of(
+        r#"Widget(SlopeField((ode: Inline((name: "a \"b\"", vars: ["x"], rhs: ["x + \"zz\""], initial: [0.8])), t_end: 5.0)))"#,
+    );
+    let d = &deck.widget_problems[0].diagnostic;
+    assert_eq!((d.line, d.col), at(&text, "\\\"zz", 0), "{d}");
+    // a missing file and one outside the project: at the path string
+    let (text, deck) = problems_of(r#"Widget(Spiral((ode: File("problems/none.ron"))))"#);
+    let d = &deck.widget_problems[0].diagnostic;
+    assert_eq!((d.line, d.col), at(&text, "problems/none.ron", 0), "{d}");
+    assert!(d.message.contains("no problem file"), "{d}");
+    let (text, deck) = problems_of(r#"Widget(Spiral((ode: File("../../etc/passwd"))))"#);
+    let d = &deck.widget_problems[0].diagnostic;
+    assert_eq!((d.line, d.col), at(&text, "../../etc", 0), "{d}");
+    assert!(d.message.contains("outside the project"), "{d}");
+    // a missing tableau file in a methods list: at its path
+    let (text, deck) = problems_of(
+        r#"Widget(Convergence((ode: Inline((vars: ["x"], rhs: ["-x"], initial: [1.0])), methods: [Euler, Tableau("tableaux/gone.ron")])))"#,
+    );
+    let d = &deck.widget_problems[0].diagnostic;
+    assert_eq!((d.line, d.col), at(&text, "tableaux/gone.ron", 0), "{d}");
+    // and `lectern check` reports it with that position, and fails
+    let (_dir, path) = project(
+        r#"Widget(SlopeField((ode: Inline((vars: ["x"], rhs: ["x*sin(t) - q^3/3"], initial: [0.8])), t_end: 5.0)))"#,
+    );
+    let report = lectern::cli::check::check_paths(&[path.clone()], false);
+    assert_eq!(report.problems.len(), 1, "{:?}", report.problems);
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert_eq!(
+        (report.problems[0].line, report.problems[0].col),
+        at(&text, "q^3", 0)
+    );
+}
+
+#[test]
+fn a_bad_equation_leaves_the_rest_of_the_deck_working_and_reload_keeps_the_last_good() {
+    use lectern::app::DeckState;
+    use lectern::deck::DeckSession;
+    let good = r#"Widget(SlopeField((ode: Inline((vars: ["x"], rhs: ["-x"], initial: [1.0])), t_end: 3.0)))"#;
+    let (_dir, path) = project(good);
+    let mut session = DeckSession::open(&path).unwrap();
+    let mut states = DeckState::default();
+    let slide = session.deck().slides[0].clone();
+    let state = states.slide(&slide);
+    state.set_deck_path(Some(&path));
+    state.ensure_widgets(&slide);
+    let before = state.widget_at(&[0]).unwrap().data().unwrap();
+    // the lecturer saves a typo: the deck still loads, the widget keeps -x and shows the error
+    let text = std::fs::read_to_string(&path).unwrap();
+    std::fs::write(&path, text.replace("[\"-x\"]", "[\"-x*(\"]")).unwrap();
+    assert_eq!(
+        session.apply_changed(&[path.clone()]),
+        Some(lectern::reload::Reloaded::Updated)
+    );
+    assert_eq!(session.deck().widget_problems.len(), 1);
+    let slide = session.deck().slides[0].clone();
+    let state = states.slide(&slide);
+    state.ensure_widgets(&slide);
+    let w = state.widget_at(&[0]).unwrap();
+    assert!(w.ode().unwrap().load_error().unwrap().contains("rhs[0]"));
+    assert_eq!(w.data().unwrap(), before, "the last good equation stays");
+}
+
+#[test]
+fn hostile_input_gives_a_message_or_a_diverged_marker() {
+    let one = |rhs: &str, params: &str| {
+        format!(
+            r#"SlopeField((ode: Inline((vars: ["x"], rhs: ["{rhs}"], params: {{{params}}}, initial: [1.0])), t_end: 3.0))"#
+        )
+    };
+    let msg = |ron_text: &str| {
+        let mut w = spec(ron_text).instantiate_in(None);
+        let e = w.ode().unwrap().load_error().map(str::to_owned);
+        (e, w.data())
+    };
+    // a million characters: refused with a message, quickly
+    let long = "x+".repeat(500_000) + "x";
+    let t = std::time::Instant::now();
+    let (e, d) = msg(&one(&long, ""));
+    assert!(e.unwrap().contains("characters long"));
+    assert!(d.is_none());
+    assert!(t.elapsed().as_secs_f64() < 5.0);
+    // deep nesting: parentheses, powers, signs
+    for deep in [
+        format!("{}x{}", "(".repeat(100_000), ")".repeat(100_000)),
+        "x^".repeat(900) + "x",
+        "-".repeat(1500) + "x",
+    ] {
+        let (e, _) = msg(&one(&deep, ""));
+        let e = e.unwrap();
+        assert!(e.contains("nests") || e.contains("characters"), "{e}");
+    }
+    // NaN and infinite parameters: a message (RON writes them NaN and inf)
+    for bad in ["NaN", "inf", "-inf"] {
+        let (e, _) = msg(&one("k*x", &format!("\"k\": {bad}")));
+        assert!(e.unwrap().contains("finite"), "{bad}");
+    }
+    // an equation that blows up in one step: every path ends with "diverged", none has NaN
+    let (e, d) = msg(&one("1e300*x^9", ""));
+    assert!(e.is_none());
+    let d = d.unwrap();
+    for (name, p) in &d.series {
+        assert!(p.xs.iter().flatten().all(|v| v.is_finite()), "{name}");
+        if name != "reference" {
+            assert!(p.diverged_at.is_some(), "{name}");
+        }
+    }
+    // typing the same things live: the last good equation stays
+    let mut w = spec(&one("-x", "")).instantiate_in(None);
+    let ode = w.ode().unwrap();
+    for text in [
+        long.as_str(),
+        "((((((((((((((((((((((((((((((((((((((((((((((((((x))))))))))))))))))))))))))))))))))))))))))))))))))",
+        "x*(",
+        "",
+    ] {
+        assert!(!ode.set_expr(ExprSlot::Rhs(0), text));
+        assert_eq!(ode.def().unwrap().rhs[0], "-x");
+        assert!(
+            ode.fields().0[0].error.is_some(),
+            "{}",
+            &text[..text.len().min(20)]
+        );
+    }
+}
+
+/// The presenter's editor, driven like a lecturer: the audience view has no text field; on the
+/// presenter view (P) typing a valid equation changes the plot's data keystroke by keystroke,
+/// an invalid one keeps it and shows the error with its column, Ctrl+S writes the last good
+/// equation into the deck (only those bytes), and the file re-parses to it.
+#[test]
+fn typing_on_the_presenter_view_changes_the_plot_and_ctrl_s_writes_it_back() {
+    use egui_kittest::kittest::Queryable;
+    let (_dir, path) = project(&format!(
+        "Widget(SlopeField(({FORCED_INLINE}, start: (0.0, 1.5), h: 0.5, t_end: 8.0, view: (0.0, 8.0, -1.5, 2.0))))"
+    ));
+    let original = std::fs::read_to_string(&path).unwrap();
+    let app = lectern::app::LecternApp::new(lectern::deck::DeckSession::open(&path).unwrap());
+    let mut h = egui_kittest::Harness::builder()
+        .with_size([1280.0, 800.0])
+        .wgpu()
+        .build_ui_state(
+            |ui, app: &mut lectern::app::LecternApp| app.frame_ui(ui),
+            app,
+        );
+    h.run_steps(3);
+    let euler = |h: &mut egui_kittest::Harness<'static, lectern::app::LecternApp>| {
+        let state = h.state_mut().slide_state(0).unwrap();
+        let d = state.widget_at(&[0]).unwrap().data().unwrap();
+        series(&d, "euler")
+            .xs
+            .iter()
+            .map(|x| x[0])
+            .collect::<Vec<f64>>()
+    };
+    let start = euler(&mut h);
+    assert!(
+        h.query_by_value("cos(t) - x").is_none(),
+        "the audience never sees the editor"
+    );
+    h.key_press(egui::Key::P);
+    h.run_steps(3);
+    // the fields: the right-hand side, then the exact solution
+    let field = h
+        .get_all_by_role(egui::accesskit::Role::TextInput)
+        .next()
+        .unwrap();
+    assert_eq!(field.value().as_deref(), Some("cos(t) - x"));
+    field.focus();
+    h.run_steps(2);
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
+    h.run_steps(1);
+    // type `-2*x + cos(3*t)` one key at a time: `P`, `R` and digits are text now, not keys
+    let typed = "-2*x + cos(3*t)";
+    for c in typed.chars() {
+        h.get_all_by_role(egui::accesskit::Role::TextInput)
+            .next()
+            .unwrap()
+            .type_text(&c.to_string());
+        h.run_steps(1);
+    }
+    h.run_steps(2);
+    assert!(
+        h.query_all_by_role(egui::accesskit::Role::TextInput)
+            .next()
+            .is_some(),
+        "P while typing is a letter: the presenter view stays"
+    );
+    let after = euler(&mut h);
+    let want: Vec<f64> = {
+        let f = |t: f64, x: f64| -2.0 * x + (3.0 * t).cos();
+        let mut x = 1.5;
+        let mut v = vec![x];
+        for i in 0..16 {
+            x += 0.5 * f(i as f64 * 0.5, x);
+            v.push(x);
+        }
+        v
+    };
+    assert_ne!(after, start);
+    for (a, b) in after.iter().zip(&want) {
+        assert!((a - b).abs() < 1e-12, "{a} vs {b}");
+    }
+    // an invalid edit (`*(` appended: every keystroke leaves it unparsable): the plot keeps
+    // the last good equation, the error shows its column (the end, 18)
+    h.key_press(egui::Key::End);
+    h.run_steps(1);
+    for c in "*(".chars() {
+        h.get_all_by_role(egui::accesskit::Role::TextInput)
+            .next()
+            .unwrap()
+            .type_text(&c.to_string());
+        h.run_steps(1);
+    }
+    h.run_steps(2);
+    assert_eq!(euler(&mut h), after);
+    let field = h
+        .get_all_by_role(egui::accesskit::Role::TextInput)
+        .next()
+        .unwrap();
+    assert_eq!(field.value().as_deref(), Some("-2*x + cos(3*t)*("));
+    assert!(h.query_by_label_contains("column 18: in rhs[0]").is_some());
+    // Ctrl+S writes the last good equation into the deck, changing only those bytes
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::S);
+    h.run_steps(2);
+    let written = std::fs::read_to_string(&path).unwrap();
+    assert_eq!(
+        written,
+        original.replacen("\"cos(t) - x\"", "\"-2*x + cos(3*t)\"", 1)
+    );
+    let deck = parse_deck(&written, &path).unwrap();
+    match &deck.slides[0].body[0] {
+        lectern::deck::Block::Widget(WidgetSpec::SlopeField(s)) => match &s.ode {
+            lectern::deck::widgets::OdeSource::Inline(def) => {
+                assert_eq!(def.rhs, vec![typed.to_string()])
+            }
+            other => panic!("{other:?}"),
+        },
+        other => panic!("{other:?}"),
+    }
+}
