@@ -465,3 +465,82 @@ fn typing_on_the_presenter_view_changes_the_plot_and_ctrl_s_writes_it_back() {
         other => panic!("{other:?}"),
     }
 }
+
+/// Keystroke → new plot data for the deck's slope field (parse + compile + solve + field), and
+/// the expression against a native closure on the widget's own path. A measurement, not a test:
+/// it prints and asserts nothing about time (`cargo test --test live_odes keystroke -- --ignored
+/// --nocapture`; summarised in docs/benchmarks/live-odes.md).
+#[test]
+#[ignore]
+fn keystroke_to_plot_data_timing() {
+    use lectern::ode::{FnSystem, Method, Scheme};
+    use lectern::widgets::methods::{fixed_path, reference_path, steps_for};
+    use lectern::widgets::slope_field::SlopeField;
+    use std::time::Instant;
+
+    let deck = load_deck(&bundled()).unwrap();
+    let spec = deck
+        .slides
+        .iter()
+        .flat_map(|s| s.widgets())
+        .find_map(|(_, w)| match w {
+            WidgetSpec::SlopeField(s) => Some(s.clone()),
+            _ => None,
+        })
+        .unwrap();
+    let mut w = SlopeField::new(spec.clone(), Some(&bundled()));
+    w.refresh();
+    let stats = |mut v: Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        let q = |p: f64| v[((v.len() - 1) as f64 * p).round() as usize];
+        (q(0.5), q(0.95), q(1.0))
+    };
+    let mut per_edit = Vec::new();
+    let mut per_parse = Vec::new();
+    for i in 0..1000 {
+        // a different valid equation each time, as typing digits would give
+        let text = format!("-{}*x + cos({}*t)", 1 + i % 7, 1 + (i / 7) % 9);
+        let t = Instant::now();
+        assert!(w.live_ode().set_expr(ExprSlot::Rhs(0), &text) || i == 0);
+        let parsed = t.elapsed().as_secs_f64();
+        w.refresh();
+        per_edit.push(t.elapsed().as_secs_f64() * 1e3);
+        per_parse.push(parsed * 1e3);
+    }
+    let (m, p95, max) = stats(per_edit);
+    let (pm, pp95, _) = stats(per_parse);
+    println!(
+        "keystroke -> plot data, 1000 edits: median {m:.3} ms, p95 {p95:.3} ms, max {max:.3} ms (parse+compile alone: median {pm:.4} ms, p95 {pp95:.4} ms)"
+    );
+
+    // expression vs native closure, on the widget's own path: three fixed-step solves of h = 0.5
+    // over [0, 8] and the 2000-step RK4 reference, from the slide's start
+    let p = lectern::ode::problem::Problem::load(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("slides/problems/forced.ron"),
+    )
+    .unwrap();
+    let native = FnSystem::new(1, |t, x: &[f64], d: &mut [f64]| d[0] = t.cos() - x[0]);
+    let n = steps_for(0.0, 8.0, 0.5, 20_000);
+    let path_of = |sys: &dyn lectern::ode::System| {
+        let mut s = 0.0;
+        for m in [Method::Euler, Method::Midpoint, Method::Rk4] {
+            s += fixed_path(sys, Scheme::Method(m), 0.0, &[1.5], 0.5, n, 1e4).last()[0];
+        }
+        s + reference_path(sys, 0.0, &[1.5], 8.0).last()[0]
+    };
+    let time = |sys: &dyn lectern::ode::System| {
+        let mut v = Vec::new();
+        for _ in 0..300 {
+            let t = Instant::now();
+            std::hint::black_box(path_of(sys));
+            v.push(t.elapsed().as_secs_f64() * 1e3);
+        }
+        stats(v).0
+    };
+    let (e, nat) = (time(&p), time(&native));
+    assert!((path_of(&p) - path_of(&native)).abs() < 1e-12);
+    println!(
+        "widget path (3 methods + reference): expression {e:.3} ms, native {nat:.3} ms, ratio {:.2}",
+        e / nat
+    );
+}

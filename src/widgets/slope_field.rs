@@ -164,6 +164,18 @@ impl SlopeField {
         (paths, reference)
     }
 
+    /// Brings the draw data (paths, reference, slope marks) up to date with the spec and the
+    /// equation, as a frame does before drawing; cheap when nothing changed.
+    pub fn refresh(&mut self) {
+        self.update();
+        self.update_marks();
+    }
+
+    /// The equation, live.
+    pub fn live_ode(&mut self) -> &mut LiveOde {
+        &mut self.ode
+    }
+
     /// A path as plot points: (t, x) in the t–x plane, (xᵢ, xⱼ) in the phase plane.
     fn plot_points(&self, plane: Option<(usize, usize)>, path: &Path) -> Vec<[f64; 2]> {
         match plane {
