@@ -58,7 +58,7 @@ pub const HELP: &[(&str, &str)] = &[
     ("T Shift+T", "pause / reset the timer"),
     ("R", "reset this slide's tweaks"),
     ("Ctrl+1…9 1…9", "store / recall a tweak bookmark"),
-    ("Ctrl+S", "write tweaks back into the deck file"),
+    ("Ctrl+S", "write tweaks and typed equations back"),
     ("E", "export this slide as PNG"),
     ("?", "this list"),
     ("Esc", "close overlays, leave fullscreen"),

@@ -58,13 +58,14 @@ pub fn equation_ui(ui: &mut egui::Ui, kind: &str, ode: &mut LiveOde) {
     for (slot, label, mut text) in rows {
         let id = ui.scope_id().with(("field", format!("{slot:?}")));
         ui.horizontal(|ui| {
-            ui.label(RichText::new(label).monospace());
+            let name = ui.label(RichText::new(label).monospace());
             let edit = egui::TextEdit::singleline(&mut text)
                 .id(id)
                 .font(mono.clone())
                 .char_limit(crate::ode::problem::MAX_EXPR_CHARS)
                 .desired_width(ui.available_width());
-            if ui.add(edit).changed() {
+            // named by its label, for screen readers (and the UI tests' queries)
+            if ui.add(edit).labelled_by(name.id).changed() {
                 ode.set_expr(slot, &text);
             }
         });
