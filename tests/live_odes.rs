@@ -399,11 +399,25 @@ fn typing_on_the_presenter_view_changes_the_plot_and_ctrl_s_writes_it_back() {
     // type `-2*x + cos(3*t)` one key at a time: `P`, `R` and digits are text now, not keys
     let typed = "-2*x + cos(3*t)";
     for c in typed.chars() {
+        // a real keyboard sends the key too (egui-winit: a Key event, then the Text)
+        match c {
+            '-' => h.key_press(egui::Key::Minus),
+            '+' => h.key_press(egui::Key::Plus),
+            _ => {}
+        }
         h.get_all_by_role(egui::accesskit::Role::TextInput)
             .next()
             .unwrap()
             .type_text(&c.to_string());
         h.run_steps(1);
+        if c == '-' {
+            // `-` was text: the slope field's h (its `-` key) did not move
+            let state = h.state_mut().slide_state(0).unwrap();
+            assert_eq!(
+                state.param(&[0], "h"),
+                Some(lectern::widgets::ParamSnapshot::F64(0.5))
+            );
+        }
     }
     h.run_steps(2);
     assert!(
@@ -412,6 +426,7 @@ fn typing_on_the_presenter_view_changes_the_plot_and_ctrl_s_writes_it_back() {
             .is_some(),
         "P while typing is a letter: the presenter view stays"
     );
+
     let after = euler(&mut h);
     let want: Vec<f64> = {
         let f = |t: f64, x: f64| -2.0 * x + (3.0 * t).cos();

@@ -58,7 +58,7 @@ pub fn equation_ui(ui: &mut egui::Ui, kind: &str, ode: &mut LiveOde) {
     for (slot, label, mut text) in rows {
         let id = ui.scope_id().with(("field", format!("{slot:?}")));
         ui.horizontal(|ui| {
-            let name = ui.label(RichText::new(label).monospace());
+            let name = ui.label(RichText::new(label).family(egui::FontFamily::Monospace));
             let edit = egui::TextEdit::singleline(&mut text)
                 .id(id)
                 .font(mono.clone())
@@ -93,7 +93,9 @@ fn error_ui(ui: &mut egui::Ui, text: &str, msg: &str, col: usize) {
         RichText::new(format!(
             "{shown}{caret}\ncolumn {col}: {msg} (the last good equation stays)"
         ))
-        .monospace()
+        // a family, not a text style: the presenter panel overrides text styles, and the caret
+        // must line up under the character
+        .family(egui::FontFamily::Monospace)
         .color(ERROR),
     );
 }

@@ -87,6 +87,15 @@ pub struct Keys {
 }
 
 pub fn keys(ui: &egui::Ui) -> Keys {
+    // The presenter typing an equation: `-`, `+`, `[`, `]` are text, not widget keys.
+    if ui.ctx().text_edit_focused() {
+        return Keys {
+            h_down: false,
+            h_up: false,
+            back: false,
+            forward: false,
+        };
+    }
     ui.input(|i| Keys {
         h_down: i.key_pressed(egui::Key::Minus),
         h_up: i.key_pressed(egui::Key::Plus) || i.key_pressed(egui::Key::Equals),
