@@ -512,20 +512,34 @@ fn keystroke_to_plot_data_timing() {
     };
     let mut per_edit = Vec::new();
     let mut per_parse = Vec::new();
+    let mut per_edit_min3 = Vec::new();
+    let mut edit = |text: &str| {
+        let t = Instant::now();
+        w.live_ode().set_expr(ExprSlot::Rhs(0), text);
+        let parsed = t.elapsed().as_secs_f64() * 1e3;
+        w.refresh();
+        (t.elapsed().as_secs_f64() * 1e3, parsed)
+    };
     for i in 0..1000 {
         // a different valid equation each time, as typing digits would give
         let text = format!("-{}*x + cos({}*t)", 1 + i % 7, 1 + (i / 7) % 9);
-        let t = Instant::now();
-        assert!(w.live_ode().set_expr(ExprSlot::Rhs(0), &text) || i == 0);
-        let parsed = t.elapsed().as_secs_f64();
-        w.refresh();
-        per_edit.push(t.elapsed().as_secs_f64() * 1e3);
-        per_parse.push(parsed * 1e3);
+        let (ms, parsed) = edit(&text);
+        per_edit.push(ms);
+        per_parse.push(parsed);
+        // the same edit twice more (from another equation): the least of the three is the
+        // edit's own cost, without the time other processes took the core from it
+        let mut best = ms;
+        for _ in 0..2 {
+            edit("x");
+            best = best.min(edit(&text).0);
+        }
+        per_edit_min3.push(best);
     }
     let (m, p95, max) = stats(per_edit);
     let (pm, pp95, _) = stats(per_parse);
+    let (bm, bp95, bmax) = stats(per_edit_min3);
     println!(
-        "keystroke -> plot data, 1000 edits: median {m:.3} ms, p95 {p95:.3} ms, max {max:.3} ms (parse+compile alone: median {pm:.4} ms, p95 {pp95:.4} ms)"
+        "keystroke -> plot data, 1000 edits: median {m:.3} ms, p95 {p95:.3} ms, max {max:.3} ms (parse+compile alone: median {pm:.4} ms, p95 {pp95:.4} ms); least of 3 per edit: median {bm:.3} ms, p95 {bp95:.3} ms, max {bmax:.3} ms"
     );
 
     // expression vs native closure, on the widget's own path: three fixed-step solves of h = 0.5
