@@ -249,7 +249,7 @@ fn equation_faults_are_reported_at_the_decks_line_and_column() {
     let (_dir, path) = project(
         r#"Widget(SlopeField((ode: Inline((vars: ["x"], rhs: ["x*sin(t) - q^3/3"], initial: [0.8])), t_end: 5.0)))"#,
     );
-    let report = lectern::cli::check::check_paths(&[path.clone()], false);
+    let report = lectern::cli::check::check_paths(std::slice::from_ref(&path), false);
     assert_eq!(report.problems.len(), 1, "{:?}", report.problems);
     let text = std::fs::read_to_string(&path).unwrap();
     assert_eq!(
@@ -275,7 +275,7 @@ fn a_bad_equation_leaves_the_rest_of_the_deck_working_and_reload_keeps_the_last_
     let text = std::fs::read_to_string(&path).unwrap();
     std::fs::write(&path, text.replace("[\"-x\"]", "[\"-x*(\"]")).unwrap();
     assert_eq!(
-        session.apply_changed(&[path.clone()]),
+        session.apply_changed(std::slice::from_ref(&path)),
         Some(lectern::reload::Reloaded::Updated)
     );
     assert_eq!(session.deck().widget_problems.len(), 1);

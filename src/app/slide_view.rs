@@ -8,7 +8,7 @@ use egui::{Align, Color32, Rect, Sense, Stroke, UiBuilder, Vec2, vec2};
 
 use super::blocks::{self, BlockCtx};
 use super::theme::{self, Look, Palette, fit_canvas, size};
-use crate::deck::{Block, Deck, Layout, Slide};
+use crate::deck::{Deck, Layout, Slide};
 use crate::widgets::{ParamSnapshot, SlideWidget, WidgetSpec, params};
 
 /// The live state of one slide: its widgets, created from their specs the first time the slide
@@ -118,27 +118,10 @@ impl SlideState {
 
     /// Makes every widget of `slide` (so tweaks can be set before it is first drawn).
     pub fn ensure_widgets(&mut self, slide: &Slide) {
-        fn walk(state: &mut SlideState, blocks: &[Block], path: &mut Vec<usize>) {
-            for (i, b) in blocks.iter().enumerate() {
-                path.push(i);
-                match b {
-                    Block::Widget(spec) => {
-                        let deck = state.deck_path.clone();
-                        state.widget(path, spec, deck.as_deref());
-                    }
-                    Block::Columns(cols) => {
-                        for (c, col) in cols.iter().enumerate() {
-                            path.push(c);
-                            walk(state, col, path);
-                            path.pop();
-                        }
-                    }
-                    _ => {}
-                }
-                path.pop();
-            }
+        let deck = self.deck_path.clone();
+        for (path, spec) in slide.widgets() {
+            self.widget(&path, spec, deck.as_deref());
         }
-        walk(self, &slide.body, &mut Vec::new());
     }
 
     /// Every live value, by widget path and parameter id (a bookmark).

@@ -67,7 +67,7 @@ impl Edits {
         self.deck.len() + self.files.iter().map(|(_, e)| e.len()).sum::<usize>()
     }
 
-    fn to_file(&mut self, file: &Path, at: String, value: NewValue) {
+    fn push_file_edit(&mut self, file: &Path, at: String, value: NewValue) {
         match self.files.iter_mut().find(|(f, _)| f == file) {
             Some((_, edits)) => edits.push((at, value)),
             None => self.files.push((file.to_path_buf(), vec![(at, value)])),
@@ -104,7 +104,7 @@ pub fn edits_for(slide: &Slide, state: &mut SlideState) -> Result<Edits, String>
                 value: raw(v),
             }),
             WriteTo::OdeParam(name) => match ode_file {
-                Some(file) => out.to_file(&file, format!("params.{name}"), raw(v)),
+                Some(file) => out.push_file_edit(&file, format!("params.{name}"), raw(v)),
                 None => out.deck.push(ValueEdit {
                     slide: id.clone(),
                     block: path,
@@ -118,7 +118,7 @@ pub fn edits_for(slide: &Slide, state: &mut SlideState) -> Result<Edits, String>
         let file = ode.file().map(Path::to_path_buf);
         for (slot, text) in ode.typed() {
             match &file {
-                Some(f) => out.to_file(f, slot.def_path(), NewValue::Str(text)),
+                Some(f) => out.push_file_edit(f, slot.def_path(), NewValue::Str(text)),
                 None => out.deck.push(ValueEdit {
                     slide: id.clone(),
                     block: path.clone(),

@@ -1,4 +1,4 @@
-//! 6. Convergence: global error at the end time vs step size h on log–log axes, one line per
+//! Widget 6: Convergence: global error at the end time vs step size h on log–log axes, one line per
 //! method, with the least-squares slope (the measured order) labelled and recomputed live.
 //! Include the notes' RK4 typo (ERRATA 1), `Tableau("tableaux/rk4-typo.ron")`, to watch fourth
 //! order collapse to first. The error is against the problem's exact solution at `t_end`, or a
@@ -12,7 +12,7 @@ use super::live_ode::LiveOde;
 use super::methods::{MethodSet, steps_for};
 use super::style::{self, fmt_num};
 use super::{Param, SlideWidget};
-use crate::deck::widgets::{ConvergenceSpec, WidgetSpec};
+use crate::deck::widgets::ConvergenceSpec;
 use crate::ode::problem::Problem;
 use crate::ode::{Scheme, study};
 
@@ -46,7 +46,7 @@ pub fn errors_at(
     scheme: Scheme<'_>,
     ks: std::ops::Range<usize>,
 ) -> Vec<(f64, f64)> {
-    if !(spec.t_end > p.t0) {
+    if spec.t_end.is_nan() || spec.t_end <= p.t0 {
         return Vec::new();
     }
     let hs: Vec<f64> = ks.map(|k| level_h(spec, p.t0, k)).collect();
@@ -289,23 +289,7 @@ impl SlideWidget for Convergence {
         v
     }
 
-    fn reset(&mut self) {
-        self.spec = self.initial.clone();
-        self.methods.reset();
-        self.ode.reset();
-    }
-
-    fn spec(&self) -> WidgetSpec {
-        WidgetSpec::Convergence(self.spec.clone())
-    }
-
-    fn ode(&mut self) -> Option<&mut LiveOde> {
-        Some(&mut self.ode)
-    }
-
-    fn problems(&self) -> Vec<String> {
-        style::problem_lines(self.ode.load_error(), &self.methods.errors)
-    }
+    ode_plumbing!(Convergence);
 }
 
 #[cfg(test)]

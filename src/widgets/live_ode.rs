@@ -209,15 +209,15 @@ impl LiveOde {
 
     /// Back to the file's equation (`R`).
     pub fn reset(&mut self) {
-        if let Some(file_def) = &self.file_def {
-            if self.def.as_ref() != Some(file_def) {
-                self.def = Some(file_def.clone());
-                if let Ok(p) = file_def.compile(self.named()) {
-                    self.problem = Some(p);
-                }
-                self.compiled_params = file_def.params.clone();
-                self.revision += 1;
+        if let Some(file_def) = &self.file_def
+            && self.def.as_ref() != Some(file_def)
+        {
+            self.def = Some(file_def.clone());
+            if let Ok(p) = file_def.compile(self.named()) {
+                self.problem = Some(p);
             }
+            self.compiled_params = file_def.params.clone();
+            self.revision += 1;
         }
         self.refill_fields();
     }

@@ -20,6 +20,28 @@ macro_rules! spec_plumbing {
     };
 }
 
+/// The plumbing of every widget that draws an ODE with a `methods:` list: its live values are
+/// the spec (deck values in `self.initial`), the method switches (`self.methods`) and the
+/// equation (`self.ode`); `R` resets all three.
+macro_rules! ode_plumbing {
+    ($variant:ident) => {
+        fn reset(&mut self) {
+            self.spec = self.initial.clone();
+            self.methods.reset();
+            self.ode.reset();
+        }
+        fn spec(&self) -> $crate::widgets::WidgetSpec {
+            $crate::widgets::WidgetSpec::$variant(self.spec.clone())
+        }
+        fn ode(&mut self) -> Option<&mut $crate::widgets::LiveOde> {
+            Some(&mut self.ode)
+        }
+        fn problems(&self) -> Vec<String> {
+            $crate::widgets::style::problem_lines(self.ode.load_error(), &self.methods.errors)
+        }
+    };
+}
+
 pub mod convergence;
 pub mod live_ode;
 pub mod methods;

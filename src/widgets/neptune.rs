@@ -1,4 +1,4 @@
-//! 4. Instability, "off to Neptune": y' = λy (or the oscillator x'' = −x, or any ODE) integrated
+//! Widget 4: Instability, "off to Neptune": y' = λy (or the oscillator x'' = −x, or any ODE) integrated
 //! with `h` on either side of a method's stability limit. The axes stay clamped to the true
 //! solution's scale; a path that leaves them ends in a red "diverged" marker, never NaN or a
 //! crash. The printed limits use λ, the eigenvalue of the equation's Jacobian at the start with
@@ -13,7 +13,7 @@ use super::methods::{MethodSet, Path, fixed_path, reference_path, steps_for};
 use super::stability::{C, stable_h_limit};
 use super::style::{self, fmt_num};
 use super::{Param, PlotData, SlideWidget};
-use crate::deck::widgets::{NeptuneSpec, WidgetSpec};
+use crate::deck::widgets::NeptuneSpec;
 use crate::ode::System;
 use crate::ode::problem::Problem;
 
@@ -256,23 +256,7 @@ impl SlideWidget for Neptune {
         v
     }
 
-    fn reset(&mut self) {
-        self.spec = self.initial.clone();
-        self.methods.reset();
-        self.ode.reset();
-    }
-
-    fn spec(&self) -> WidgetSpec {
-        WidgetSpec::Neptune(self.spec.clone())
-    }
-
-    fn ode(&mut self) -> Option<&mut LiveOde> {
-        Some(&mut self.ode)
-    }
-
-    fn problems(&self) -> Vec<String> {
-        style::problem_lines(self.ode.load_error(), &self.methods.errors)
-    }
+    ode_plumbing!(Neptune);
 
     fn data(&mut self) -> Option<PlotData> {
         let vars = self.ode.problem()?.vars.clone();

@@ -161,7 +161,7 @@ impl<'a> Param<'a> {
                     .logarithmic(*log)
                     .text(self.label.as_str()),
             ),
-            ParamValue::Bool(v) => ui.checkbox(&mut **v, self.label.as_str()),
+            ParamValue::Bool(v) => ui.checkbox(v, self.label.as_str()),
             ParamValue::Usize { value, min, max } => {
                 ui.add(egui::Slider::new(&mut **value, *min..=*max).text(self.label.as_str()))
             }

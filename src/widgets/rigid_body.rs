@@ -1,4 +1,4 @@
-//! 9. A tumbling box near its intermediate axis (the Dzhanibekov flip), integrated by
+//! Widget 9: A tumbling box near its intermediate axis (the Dzhanibekov flip), integrated by
 //! [`crate::rigid`] from the 13-number state X = (x, q, P, L) with Ẋ = (P/M, ½ ω q, F, τ) and
 //! ω = R I_body⁻¹ Rᵀ L (ERRATA 2, 4), by Euler, midpoint, RK4 and symplectic Euler side by
 //! side, each with its energy and |L|. Below: the drawn box's inertia exactly from its mesh

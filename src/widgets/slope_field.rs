@@ -1,4 +1,4 @@
-//! 1. The slope field of ẋ = f(x, t) (t–x plane) or of a system (phase plane of two of its
+//! Widget 1: The slope field of ẋ = f(x, t) (t–x plane) or of a system (phase plane of two of its
 //! variables), with the paths of the widget's methods and the exact solution over it. Click or
 //! drag to move the start point; `h` by slider or `-`/`+`; the equation's parameters by slider
 //! and its expressions by typing (presenter side); the global error of each method at the end
@@ -15,7 +15,7 @@ use super::methods::{
 };
 use super::style::{self, fmt_num};
 use super::{Param, PlotData, SlideWidget};
-use crate::deck::widgets::{SlopeFieldSpec, WidgetSpec};
+use crate::deck::widgets::SlopeFieldSpec;
 use crate::ode::System;
 use crate::ode::problem::Problem;
 
@@ -472,23 +472,7 @@ impl SlideWidget for SlopeField {
         v
     }
 
-    fn reset(&mut self) {
-        self.spec = self.initial.clone();
-        self.methods.reset();
-        self.ode.reset();
-    }
-
-    fn spec(&self) -> WidgetSpec {
-        WidgetSpec::SlopeField(self.spec.clone())
-    }
-
-    fn ode(&mut self) -> Option<&mut LiveOde> {
-        Some(&mut self.ode)
-    }
-
-    fn problems(&self) -> Vec<String> {
-        style::problem_lines(self.ode.load_error(), &self.methods.errors)
-    }
+    ode_plumbing!(SlopeField);
 
     fn data(&mut self) -> Option<PlotData> {
         let p = self.ode.problem().cloned()?;

@@ -1,4 +1,4 @@
-//! 3. Inaccuracy: explicit Euler on the circle (ẋ, ẏ) = (−y, x) spirals outwards (its radius
+//! Widget 3: Inaccuracy: explicit Euler on the circle (ẋ, ẏ) = (−y, x) spirals outwards (its radius
 //! grows by √(1 + h²) per step); midpoint drifts far less and RK4 stays on the circle at
 //! lecture scale. The radius after each revolution is printed under each panel. Any ODE with
 //! two or more variables can be drawn (its first two, one panel per method), with its exact
@@ -14,7 +14,7 @@ use super::methods::{
 };
 use super::style::{self, fmt_num};
 use super::{Param, PlotData, SlideWidget};
-use crate::deck::widgets::{SpiralSpec, WidgetSpec};
+use crate::deck::widgets::SpiralSpec;
 use crate::ode::problem::Problem;
 
 const H_RANGE: (f64, f64) = (0.005, 1.0);
@@ -238,23 +238,7 @@ impl SlideWidget for Spiral {
         v
     }
 
-    fn reset(&mut self) {
-        self.spec = self.initial.clone();
-        self.methods.reset();
-        self.ode.reset();
-    }
-
-    fn spec(&self) -> WidgetSpec {
-        WidgetSpec::Spiral(self.spec.clone())
-    }
-
-    fn ode(&mut self) -> Option<&mut LiveOde> {
-        Some(&mut self.ode)
-    }
-
-    fn problems(&self) -> Vec<String> {
-        style::problem_lines(self.ode.load_error(), &self.methods.errors)
-    }
+    ode_plumbing!(Spiral);
 
     fn data(&mut self) -> Option<PlotData> {
         let vars = self.problem()?.vars;

@@ -1,4 +1,4 @@
-//! 8. Stability regions: where |R(z)| ≤ 1 in the complex plane, z = hλ, for Euler, midpoint,
+//! Widget 8: Stability regions: where |R(z)| ≤ 1 in the complex plane, z = hλ, for Euler, midpoint,
 //! RK4 and any tableau written in the deck. R is the method's stability function, evaluated
 //! from its Butcher tableau, so a tableau in the deck gets its true region.
 
@@ -140,7 +140,7 @@ impl Stability {
                     }
                 }
             }
-            contours.push((name, color, marching_squares(&vals, |i, j| at(i, j))));
+            contours.push((name, color, marching_squares(&vals, at)));
         }
         let pixels: Vec<egui::Color32> = rgba
             .iter()

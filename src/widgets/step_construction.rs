@@ -1,4 +1,4 @@
-//! 2. One step, built up stage by stage: Euler's tangent; midpoint's half step, the slope at
+//! Widget 2: One step, built up stage by stage: Euler's tangent; midpoint's half step, the slope at
 //! the midpoint, then the full step with it; RK4's k1..k4 as arrows, then their weighted
 //! combination. `[` and `]` step backwards and forwards through the construction.
 

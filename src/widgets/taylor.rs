@@ -1,4 +1,4 @@
-//! 5. Taylor series: the truncations of order 1, 2, 3, … of a function around a point. Order 1
+//! Widget 5: Taylor series: the truncations of order 1, 2, 3, … of a function around a point. Order 1
 //! is drawn in Euler's colour, 2 in midpoint's and 4 in RK4's: the order a method matches.
 
 use egui_plot::{Line, Plot, Points};

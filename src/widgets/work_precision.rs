@@ -1,4 +1,4 @@
-//! 7. Speed vs error: the work–precision diagram (error vs f-evaluations, and vs wall time) of
+//! Widget 7: Speed vs error: the work–precision diagram (error vs f-evaluations, and vs wall time) of
 //! Euler, midpoint, RK4 and a fifth-order method, computed on a background thread so the UI
 //! never waits. Answers "why not RK5, RK6?": more stages buy less and less per evaluation, and
 //! all methods meet the round-off floor.
@@ -17,7 +17,7 @@ use super::live_ode::LiveOde;
 use super::methods::{MethodSet, steps_for};
 use super::style::{self, fmt_num};
 use super::{Param, SlideWidget};
-use crate::deck::widgets::{WidgetSpec, WorkPrecisionSpec};
+use crate::deck::widgets::WorkPrecisionSpec;
 use crate::ode::problem::Problem;
 use crate::ode::study::max_error;
 use crate::ode::{Scheme, Tableau, solve_fixed_final};
@@ -298,23 +298,7 @@ impl SlideWidget for WorkPrecision {
         v
     }
 
-    fn reset(&mut self) {
-        self.spec = self.initial.clone();
-        self.methods.reset();
-        self.ode.reset();
-    }
-
-    fn spec(&self) -> WidgetSpec {
-        WidgetSpec::WorkPrecision(self.spec.clone())
-    }
-
-    fn ode(&mut self) -> Option<&mut LiveOde> {
-        Some(&mut self.ode)
-    }
-
-    fn problems(&self) -> Vec<String> {
-        style::problem_lines(self.ode.load_error(), &self.methods.errors)
-    }
+    ode_plumbing!(WorkPrecision);
 }
 
 #[cfg(test)]

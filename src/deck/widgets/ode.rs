@@ -16,8 +16,8 @@ use crate::paths;
 pub enum OdeSource {
     /// A problem file (as `lectern solve` reads it), relative to the deck's folder.
     File(String),
-    /// The problem written in the deck.
-    Inline(ProblemDef),
+    /// The problem written in the deck (boxed: a deck block stays small).
+    Inline(Box<ProblemDef>),
 }
 
 /// A loaded source: the definition as written, compiled, and the file it came from.
@@ -77,7 +77,7 @@ impl OdeSource {
         deck_path: Option<&Path>,
     ) -> Result<(ProblemDef, Option<PathBuf>), OdeError> {
         match self {
-            OdeSource::Inline(def) => Ok((def.clone(), None)),
+            OdeSource::Inline(def) => Ok((def.as_ref().clone(), None)),
             OdeSource::File(written) => {
                 let file = resolve_path(deck_path, written).map_err(|m| {
                     OdeError::InDeck(DefError {
