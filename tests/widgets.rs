@@ -387,3 +387,45 @@ fn frame_cost_while_dragging_h() {
         );
     }
 }
+
+#[test]
+fn parallel_transport_states() {
+    let mut r = SnapshotResults::new();
+    check(
+        &mut r,
+        "widget-parallel-transport-s-curve",
+        "ParallelTransport((path: StraightThenS, step: 14))",
+    );
+    check(
+        &mut r,
+        "widget-parallel-transport-loop",
+        "ParallelTransport((path: Loop, fish: 30, yaw_deg: -60.0, pitch_deg: 15.0))",
+    );
+    r.unwrap();
+}
+
+/// The exercise slide's point, from the widget's own data: on the S-curve the Frenet fish's up
+/// flips (once per inflection) and the transported fish's never does; on the straight part the
+/// Frenet frame is undefined.
+#[test]
+fn parallel_transport_widget_data_flips_only_for_frenet() {
+    use lectern::deck::widgets::ParallelTransportSpec;
+    use lectern::widgets::parallel_transport::ParallelTransport;
+    let mut w = ParallelTransport::new(ParallelTransportSpec::default());
+    assert_eq!(w.frenet_flips().len(), 2, "{:?}", w.frenet_flips());
+    let frames = w.frames().to_vec();
+    assert!(frames[1].frenet.is_none(), "straight: N undefined");
+    for pair in frames.windows(2) {
+        let (a, b) = (pair[0].transported_up(), pair[1].transported_up());
+        assert!(a.dot(b) > 0.9, "transported up turned: {a} -> {b}");
+    }
+    // the spelled-out step is the one the fish took
+    w.spec.step = 10;
+    let s = w.shown_step();
+    assert!(s.q_new.dot(w.frames()[11].transported).abs() > 1.0 - 1e-6);
+    assert!(
+        s.angle_rad > 0.05,
+        "a visible turn at step 10: {}",
+        s.angle_rad
+    );
+}

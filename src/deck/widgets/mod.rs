@@ -6,6 +6,7 @@ use serde::{Deserialize, Serialize};
 pub mod convergence;
 pub mod methods;
 pub mod neptune;
+pub mod parallel_transport;
 pub mod problems;
 pub mod rigid_body;
 pub mod slope_field;
@@ -18,6 +19,7 @@ pub mod work_precision;
 pub use convergence::ConvergenceSpec;
 pub use methods::MethodId;
 pub use neptune::{NeptuneProblem, NeptuneSpec};
+pub use parallel_transport::ParallelTransportSpec;
 pub use problems::{Field1, Field2};
 pub use rigid_body::RigidBodySpec;
 pub use slope_field::{FieldKind, SlopeFieldSpec};
@@ -48,6 +50,8 @@ pub enum WidgetSpec {
     Stability(StabilitySpec),
     /// 9. A tumbling box near its intermediate axis (the Dzhanibekov flip).
     RigidBody(RigidBodySpec),
+    /// 10. The exercise: fish along a path, Frenet frame vs parallel transport.
+    ParallelTransport(ParallelTransportSpec),
 }
 
 impl WidgetSpec {
@@ -63,6 +67,7 @@ impl WidgetSpec {
             WidgetSpec::WorkPrecision(_) => "work-precision",
             WidgetSpec::Stability(_) => "stability",
             WidgetSpec::RigidBody(_) => "rigid-body",
+            WidgetSpec::ParallelTransport(_) => "parallel-transport",
         }
     }
 }
