@@ -27,6 +27,7 @@ pub mod parallel_transport;
 pub mod params;
 pub mod problems;
 pub mod rigid_body;
+pub mod simulation_loop;
 pub mod slope_field;
 pub mod spiral;
 pub mod stability;
@@ -72,6 +73,9 @@ impl WidgetSpec {
             WidgetSpec::RigidBody(s) => Box::new(rigid_body::RigidBodyView::new(s.clone())),
             WidgetSpec::ParallelTransport(s) => {
                 Box::new(parallel_transport::ParallelTransport::new(s.clone()))
+            }
+            WidgetSpec::SimulationLoop(s) => {
+                Box::new(simulation_loop::SimulationLoop::new_in(s.clone(), base_dir))
             }
         }
     }

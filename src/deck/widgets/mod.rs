@@ -9,6 +9,7 @@ pub mod neptune;
 pub mod parallel_transport;
 pub mod problems;
 pub mod rigid_body;
+pub mod simulation_loop;
 pub mod slope_field;
 pub mod spiral;
 pub mod stability;
@@ -22,6 +23,7 @@ pub use neptune::{NeptuneProblem, NeptuneSpec};
 pub use parallel_transport::ParallelTransportSpec;
 pub use problems::{Field1, Field2};
 pub use rigid_body::RigidBodySpec;
+pub use simulation_loop::SimulationLoopSpec;
 pub use slope_field::{FieldKind, SlopeFieldSpec};
 pub use spiral::SpiralSpec;
 pub use stability::StabilitySpec;
@@ -52,6 +54,8 @@ pub enum WidgetSpec {
     RigidBody(RigidBodySpec),
     /// 10. The exercise: fish along a path, Frenet frame vs parallel transport.
     ParallelTransport(ParallelTransportSpec),
+    /// 11. The simulation loop of a floating body, drawn as a cycle with live numbers.
+    SimulationLoop(SimulationLoopSpec),
 }
 
 impl WidgetSpec {
@@ -68,6 +72,7 @@ impl WidgetSpec {
             WidgetSpec::Stability(_) => "stability",
             WidgetSpec::RigidBody(_) => "rigid-body",
             WidgetSpec::ParallelTransport(_) => "parallel-transport",
+            WidgetSpec::SimulationLoop(_) => "simulation-loop",
         }
     }
 }
