@@ -46,8 +46,10 @@ pub mod convergence;
 pub mod live_ode;
 pub mod methods;
 pub mod neptune;
+pub mod parallel_transport;
 pub mod params;
 pub mod rigid_body;
+pub mod simulation_loop;
 pub mod slope_field;
 pub mod spiral;
 pub mod stability;
@@ -135,6 +137,13 @@ impl WidgetSpec {
                 Box::new(stability::Stability::new_in(s.clone(), deck_path))
             }
             WidgetSpec::RigidBody(s) => Box::new(rigid_body::RigidBodyView::new(s.clone())),
+            WidgetSpec::ParallelTransport(s) => {
+                Box::new(parallel_transport::ParallelTransport::new(s.clone()))
+            }
+            WidgetSpec::SimulationLoop(s) => Box::new(simulation_loop::SimulationLoop::new_in(
+                s.clone(),
+                deck_path.and_then(std::path::Path::parent),
+            )),
         }
     }
 }

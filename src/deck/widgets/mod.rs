@@ -7,7 +7,9 @@ pub mod convergence;
 pub mod methods;
 pub mod neptune;
 pub mod ode;
+pub mod parallel_transport;
 pub mod rigid_body;
+pub mod simulation_loop;
 pub mod slope_field;
 pub mod spiral;
 pub mod stability;
@@ -19,7 +21,9 @@ pub use convergence::ConvergenceSpec;
 pub use methods::{MethodRef, ResolvedMethod};
 pub use neptune::NeptuneSpec;
 pub use ode::{LoadedOde, OdeError, OdeSource};
+pub use parallel_transport::ParallelTransportSpec;
 pub use rigid_body::RigidBodySpec;
+pub use simulation_loop::SimulationLoopSpec;
 pub use slope_field::SlopeFieldSpec;
 pub use spiral::SpiralSpec;
 pub use stability::StabilitySpec;
@@ -48,6 +52,10 @@ pub enum WidgetSpec {
     Stability(StabilitySpec),
     /// 9. A tumbling box near its intermediate axis (the Dzhanibekov flip).
     RigidBody(RigidBodySpec),
+    /// 10. The exercise: fish along a path, Frenet frame vs parallel transport.
+    ParallelTransport(ParallelTransportSpec),
+    /// 11. The simulation loop of a floating body, drawn as a cycle with live numbers.
+    SimulationLoop(SimulationLoopSpec),
 }
 
 impl WidgetSpec {
@@ -63,6 +71,8 @@ impl WidgetSpec {
             WidgetSpec::WorkPrecision(_) => "work-precision",
             WidgetSpec::Stability(_) => "stability",
             WidgetSpec::RigidBody(_) => "rigid-body",
+            WidgetSpec::ParallelTransport(_) => "parallel-transport",
+            WidgetSpec::SimulationLoop(_) => "simulation-loop",
         }
     }
 }
@@ -77,7 +87,11 @@ impl WidgetSpec {
             WidgetSpec::Neptune(s) => Some(&s.ode),
             WidgetSpec::Convergence(s) => Some(&s.ode),
             WidgetSpec::WorkPrecision(s) => Some(&s.ode),
-            WidgetSpec::Taylor(_) | WidgetSpec::Stability(_) | WidgetSpec::RigidBody(_) => None,
+            WidgetSpec::Taylor(_)
+            | WidgetSpec::Stability(_)
+            | WidgetSpec::RigidBody(_)
+            | WidgetSpec::ParallelTransport(_)
+            | WidgetSpec::SimulationLoop(_) => None,
         }
     }
 
@@ -91,7 +105,10 @@ impl WidgetSpec {
             WidgetSpec::WorkPrecision(s) => &s.methods,
             WidgetSpec::Stability(s) => &s.methods,
             WidgetSpec::StepConstruction(s) => std::slice::from_ref(&s.method),
-            WidgetSpec::Taylor(_) | WidgetSpec::RigidBody(_) => &[],
+            WidgetSpec::Taylor(_)
+            | WidgetSpec::RigidBody(_)
+            | WidgetSpec::ParallelTransport(_)
+            | WidgetSpec::SimulationLoop(_) => &[],
         }
     }
 }
