@@ -573,3 +573,84 @@ fn keystroke_to_plot_data_timing() {
         e / nat
     );
 }
+
+/// Equation parameters are tweaks like `h`: a slider value (and a typed expression) written back
+/// with Ctrl+S lands in the deck for an inline equation and in the problem file for `File(..)`,
+/// changing only those values' bytes; bookmarks set them by name and `R` resets them.
+#[test]
+fn parameters_and_typed_equations_write_back_to_the_deck_or_the_problem_file() {
+    use lectern::app::SlideState;
+    use lectern::app::tweaks::{apply_declared, write_back};
+    use lectern::deck::BookmarkDecl;
+    use lectern::widgets::ParamSnapshot;
+    let (dir, path) = project(
+        r#"Widget(Neptune((ode: File("problems/decay.ron"), h: 0.3, t_end: 4.0))),
+                Widget(SlopeField((ode: Inline((vars: ["x"], rhs: ["-k*x"], params: {"k": 1.0}, initial: [1.0])), t_end: 3.0)))"#,
+    );
+    let problem = dir.path().join("slides/problems/decay.ron");
+    std::fs::create_dir_all(problem.parent().unwrap()).unwrap();
+    std::fs::copy(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("slides/problems/decay.ron"),
+        &problem,
+    )
+    .unwrap();
+    let (deck_before, problem_before) = (
+        std::fs::read_to_string(&path).unwrap(),
+        std::fs::read_to_string(&problem).unwrap(),
+    );
+    let deck = load_deck(&path).unwrap();
+    let slide = deck.slides[0].clone();
+    let mut state = SlideState::default();
+    state.set_deck_path(Some(&path));
+    state.ensure_widgets(&slide);
+    // a bookmark sets λ by its name; R puts it back
+    let decl = BookmarkDecl {
+        key: 1,
+        slide: "s".into(),
+        label: String::new(),
+        set: vec![("lambda".into(), -2.0)],
+    };
+    apply_declared(&decl, &slide, &mut state);
+    assert_eq!(state.param(&[0], "lambda"), Some(ParamSnapshot::F64(-2.0)));
+    state.reset();
+    assert_eq!(state.param(&[0], "lambda"), Some(ParamSnapshot::F64(-5.0)));
+    // tweak both equations' parameters and type into the file-based one
+    assert!(state.set_param(&[0], "lambda", ParamSnapshot::F64(-3.0)));
+    assert!(state.set_param(&[1], "k", ParamSnapshot::F64(2.0)));
+    let neptune = state.widget_at(&[0]).unwrap();
+    assert!(
+        neptune
+            .ode()
+            .unwrap()
+            .set_expr(ExprSlot::Rhs(0), "lambda*y + 0.1")
+    );
+    assert_eq!(write_back(&path, &slide, &mut state), Ok(3));
+    assert_eq!(
+        std::fs::read_to_string(&path).unwrap(),
+        deck_before.replace("{\"k\": 1.0}", "{\"k\": 2.0}")
+    );
+    assert_eq!(
+        std::fs::read_to_string(&problem).unwrap(),
+        problem_before
+            .replace("{\"lambda\": -5.0}", "{\"lambda\": -3.0}")
+            .replace("[\"lambda*y\"]", "[\"lambda*y + 0.1\"]")
+    );
+    // the files re-read to the new values
+    let again = load_deck(&path).unwrap();
+    let mut fresh = SlideState::default();
+    fresh.set_deck_path(Some(&path));
+    fresh.ensure_widgets(&again.slides[0]);
+    assert_eq!(fresh.param(&[0], "lambda"), Some(ParamSnapshot::F64(-3.0)));
+    assert_eq!(fresh.param(&[1], "k"), Some(ParamSnapshot::F64(2.0)));
+    assert_eq!(
+        fresh
+            .widget_at(&[0])
+            .unwrap()
+            .ode()
+            .unwrap()
+            .def()
+            .unwrap()
+            .rhs,
+        vec!["lambda*y + 0.1".to_string()]
+    );
+}
