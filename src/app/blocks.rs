@@ -18,6 +18,9 @@ pub(crate) struct BlockCtx<'a> {
     pub slide_key: &'a str,
     /// The deck's folder; image paths are relative to it.
     pub base_dir: Option<&'a Path>,
+    /// The deck's file and the slide's index in it, to place a formula's error at its line.
+    pub deck_file: Option<&'a Path>,
+    pub slide_index: usize,
 }
 
 /// The style widgets see inside a slide: egui's dark or light visuals recoloured to the
@@ -110,7 +113,8 @@ pub(crate) fn blocks_ui(
     // Widgets (and columns holding them) share the height the other blocks leave.
     let fixed: f32 = blocks
         .iter()
-        .filter_map(|b| measure(ui, b, width, bctx))
+        .enumerate()
+        .filter_map(|(i, b)| measure(ui, b, &[path, &[i]].concat(), width, bctx))
         .sum();
     let flexible = blocks.iter().filter(|b| is_flexible(b)).count();
     let gaps = gap * blocks.len().saturating_sub(1) as f32;
@@ -137,8 +141,15 @@ fn is_flexible(block: &Block) -> bool {
     }
 }
 
-/// The height a non-flexible block will take at `width`, in points; `None` for flexible ones.
-fn measure(ui: &egui::Ui, block: &Block, width: f32, bctx: &BlockCtx) -> Option<f32> {
+/// The height a non-flexible block at `path` will take at `width`, in points; `None` for
+/// flexible ones.
+fn measure(
+    ui: &egui::Ui,
+    block: &Block,
+    path: &[usize],
+    width: f32,
+    bctx: &BlockCtx,
+) -> Option<f32> {
     let look = &bctx.look;
     match block {
         Block::Text(t) => Some(paragraph_galley(ui, t, width, look, Align::Min).size().y),
@@ -154,10 +165,14 @@ fn measure(ui: &egui::Ui, block: &Block, width: f32, bctx: &BlockCtx) -> Option<
                 .sum();
             Some(h + look.scaled(size::BULLET_GAP) * items.len().saturating_sub(1) as f32)
         }
-        Block::Math { src, latex } => Some(
-            formula(ui, bctx, &[], src, *latex)
-                .map_or_else(|| math_source_height(src, look), |f| f.size(ui, width).y),
-        ),
+        Block::Math { src, latex } => {
+            let view = formula(ui, bctx, path, src, *latex);
+            Some(match view.typeset {
+                Some(f) => f.size(ui, width).y,
+                None if view.pending => placeholder_height(src, look),
+                None => math_source_height(src, look),
+            })
+        }
         Block::Image { path, width: w } => {
             let (_, h) = images::image_size(ui.ctx(), bctx.base_dir, path, w, width, look);
             Some(h)
@@ -170,11 +185,15 @@ fn measure(ui: &egui::Ui, block: &Block, width: f32, bctx: &BlockCtx) -> Option<
             let n = cols.len().max(1) as f32;
             let gap = look.scaled(size::BLOCK_GAP * 1.5);
             let cw = (width - gap * (n - 1.0)) / n;
-            let col_h = |col: &Vec<Block>| -> f32 {
-                let inner: f32 = col.iter().filter_map(|b| measure(ui, b, cw, bctx)).sum();
+            let col_h = |(c, col): (usize, &Vec<Block>)| -> f32 {
+                let inner: f32 = col
+                    .iter()
+                    .enumerate()
+                    .filter_map(|(i, b)| measure(ui, b, &[path, &[c, i]].concat(), cw, bctx))
+                    .sum();
                 inner + look.scaled(size::BLOCK_GAP) * col.len().saturating_sub(1) as f32
             };
-            Some(cols.iter().map(col_h).fold(0.0, f32::max))
+            Some(cols.iter().enumerate().map(col_h).fold(0.0, f32::max))
         }
     }
 }
@@ -223,7 +242,7 @@ fn block_ui(
             let h = if is_flexible(block) {
                 flex_h
             } else {
-                measure(ui, block, width, bctx).unwrap_or(0.0)
+                measure(ui, block, path, width, bctx).unwrap_or(0.0)
             };
             let top_left = ui.cursor().min;
             let mut used = 0.0f32;
@@ -355,8 +374,8 @@ pub(crate) fn inline_spans(text: &str) -> Vec<(&str, Inline)> {
 /// A typeset formula, as laid out on the slide.
 struct Typeset {
     texture: egui::TextureId,
+    /// Its size in physical pixels at the slide's current em (a stale picture is scaled).
     size_px: egui::Vec2,
-    error: Option<String>,
 }
 
 impl Typeset {
@@ -371,35 +390,78 @@ impl Typeset {
     }
 }
 
-/// The formula for `src` from the shared cache (typeset on first use), or its last good
-/// rendering if the current source is broken; `None` if it never rendered.
-fn formula(
-    ui: &egui::Ui,
-    bctx: &BlockCtx,
-    path: &[usize],
-    src: &str,
-    latex: bool,
-) -> Option<Typeset> {
-    use crate::math::{MathCache, MathSyntax};
-    let ctx = ui.ctx();
-    let syntax = if latex {
-        MathSyntax::Latex
+/// What a Math block shows this frame.
+struct FormulaView {
+    /// The current formula, or the last good one of this slot (broken or pending edit).
+    typeset: Option<Typeset>,
+    /// The current source is still being typeset (live window only).
+    pending: bool,
+    error: Option<crate::math::MathError>,
+}
+
+fn syntax_of(latex: bool) -> crate::math::MathSyntax {
+    if latex {
+        crate::math::MathSyntax::Latex
     } else {
-        MathSyntax::Typst
-    };
-    let em_px = bctx.look.scaled(size::MATH) * ctx.pixels_per_point();
+        crate::math::MathSyntax::Typst
+    }
+}
+
+/// Formulas are typeset at this many physical pixels per em.
+fn em_px(ctx: &egui::Context, look: &Look) -> f32 {
+    look.scaled(size::MATH) * ctx.pixels_per_point()
+}
+
+/// The formula for `src` from the shared cache. In the live window this never waits: a formula
+/// still being typeset shows the slot's last good picture, or nothing yet (`pending`).
+fn formula(ui: &egui::Ui, bctx: &BlockCtx, path: &[usize], src: &str, latex: bool) -> FormulaView {
+    use crate::math::MathCache;
+    let ctx = ui.ctx();
+    let em = em_px(ctx, &bctx.look);
     let slot = format!("{}/{path:?}", bctx.slide_key);
     let cache = MathCache::shared(ctx);
-    let view = cache
-        .lock()
-        .ok()?
-        .get_slot(ctx, &slot, src, syntax, em_px, bctx.look.palette.title);
-    let error = view.error.map(|e| e.to_string());
-    view.formula.map(|f| Typeset {
-        texture: f.texture.id(),
-        size_px: f.size_px,
-        error,
-    })
+    let Ok(mut cache) = cache.lock() else {
+        return FormulaView {
+            typeset: None,
+            pending: true,
+            error: None,
+        };
+    };
+    let view = cache.get_slot(
+        ctx,
+        &slot,
+        src,
+        syntax_of(latex),
+        em,
+        bctx.look.palette.title,
+    );
+    FormulaView {
+        typeset: view.formula.map(|f| Typeset {
+            texture: f.texture.id(),
+            size_px: f.size_at(em),
+        }),
+        pending: view.pending,
+        error: view.error,
+    }
+}
+
+/// Asks for the formulas of `slides` at the size `look` draws them, so that paging there
+/// finds them typeset. Only in the live window: headless paths wait for what they draw.
+pub(crate) fn prefetch_formulas(
+    ctx: &egui::Context,
+    deck: &crate::deck::Deck,
+    slides: std::ops::Range<usize>,
+    look: &Look,
+) {
+    let cache = crate::math::MathCache::shared(ctx);
+    let Ok(mut cache) = cache.lock() else { return };
+    if cache.waits() {
+        return;
+    }
+    let em = em_px(ctx, look);
+    for f in crate::math::deck::formulas(deck, Some(slides)) {
+        cache.prefetch(ctx, f.src, f.syntax, em, look.palette.title);
+    }
 }
 
 fn math_source_height(src: &str, look: &Look) -> f32 {
@@ -407,9 +469,56 @@ fn math_source_height(src: &str, look: &Look) -> f32 {
     look.scaled(size::MATH * 1.3 * lines + 48.0)
 }
 
-/// Display maths, typeset by Typst (`crate::math`) and centred. A formula that never rendered
-/// shows its source in a quiet monospace frame; a broken edit keeps the last good picture. Either
-/// way the error goes to the slide's problems, for the presenter's screen.
+/// The height a formula is likely to take before it is typeset: one line of maths, taller
+/// with fractions, vectors or matrices (from the bundled deck's typeset heights).
+fn placeholder_height(src: &str, look: &Look) -> f32 {
+    let tall = [
+        "/", "frac", "vec(", "mat(", "cases(", "binom", "sum", "integral", "\\int",
+    ]
+    .iter()
+    .any(|t| src.contains(t));
+    let lines = src.matches("\\\\").count().max(src.lines().count()).max(1) as f32;
+    let em = if tall { 2.6 } else { 1.5 };
+    look.scaled(size::MATH * em * lines)
+}
+
+/// The problem line for a formula's error: at its line and column in the deck file when the
+/// deck came from one, else by its place on the slide. Cached per error (it reads the file).
+fn formula_problem(
+    ctx: &egui::Context,
+    bctx: &BlockCtx,
+    path: &[usize],
+    src: &str,
+    latex: bool,
+    err: &crate::math::MathError,
+) -> String {
+    let fallback = || format!("formula {path:?}: {err}");
+    let Some(file) = bctx.deck_file else {
+        return fallback();
+    };
+    let id = egui::Id::unique(("lectern-formula-problem", file, bctx.slide_index, path, src))
+        .with(err.to_string());
+    if let Some(line) = ctx.data(|d| d.get_temp::<String>(id)) {
+        return line;
+    }
+    let f = crate::math::deck::DeckFormula {
+        slide: bctx.slide_index,
+        path: path.to_vec(),
+        src,
+        syntax: syntax_of(latex),
+    };
+    let line = std::fs::read_to_string(file)
+        .ok()
+        .map(|text| crate::math::deck::diagnostic(file, &text, &f, err).to_string())
+        .unwrap_or_else(fallback);
+    ctx.data_mut(|d| d.insert_temp(id, line.clone()));
+    line
+}
+
+/// Display maths, typeset by Typst (`crate::math`) and centred. A formula still being typeset
+/// (live window) keeps its last good picture, or a quiet placeholder of about its height; one
+/// that never rendered shows its source in a quiet monospace frame; a broken edit keeps the last
+/// good picture. Errors go to the slide's problems, for the presenter's screen.
 fn math_ui(
     ui: &mut egui::Ui,
     bctx: &BlockCtx,
@@ -420,7 +529,11 @@ fn math_ui(
 ) {
     let look = &bctx.look;
     let width = ui.available_width();
-    if let Some(f) = formula(ui, bctx, path, src, latex) {
+    let view = formula(ui, bctx, path, src, latex);
+    if let Some(e) = &view.error {
+        state.note_problem(formula_problem(ui.ctx(), bctx, path, src, latex, e));
+    }
+    if let Some(f) = &view.typeset {
         let size = f.size(ui, width);
         let (row, _) = ui.allocate_exact_size(vec2(width, size.y), Sense::hover());
         let rect = Rect::from_center_size(row.center(), size);
@@ -430,9 +543,17 @@ fn math_ui(
             Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0)),
             egui::Color32::WHITE,
         );
-        if let Some(e) = f.error {
-            state.note_problem(format!("formula {path:?}: {e}"));
-        }
+        return;
+    }
+    if view.pending {
+        let h = placeholder_height(src, look);
+        let (row, _) = ui.allocate_exact_size(vec2(width, h), Sense::hover());
+        let quiet = Rect::from_center_size(row.center(), vec2(width * 0.4, h * 0.6));
+        ui.painter().rect_filled(
+            quiet,
+            look.scaled(10.0),
+            look.palette.panel.gamma_multiply(0.5),
+        );
         return;
     }
     let h = math_source_height(src, look);
@@ -461,7 +582,6 @@ fn math_ui(
         galley,
         look.palette.title,
     );
-    state.note_problem(format!("formula {path:?} did not typeset: {src}"));
 }
 
 #[cfg(test)]
