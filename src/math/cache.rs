@@ -259,6 +259,14 @@ impl MathCache {
     }
 }
 
+/// For the live window: formulas drawn in `ctx` are never waited for (see
+/// [`MathCache::set_wait`]).
+pub fn never_wait(ctx: &egui::Context) {
+    if let Ok(mut cache) = MathCache::shared(ctx).lock() {
+        cache.set_wait(false);
+    }
+}
+
 fn key(src: &str, syntax: MathSyntax, size_px: f32, color: egui::Color32) -> Key {
     Key {
         src: src.to_owned(),
