@@ -223,7 +223,12 @@ fn block_ui(
         }
         Block::Bullets(items) => bullets_ui(ui, items, look),
         Block::Math { src, latex } => math_ui(ui, bctx, path, src, *latex, state),
-        Block::Image { path: p, width: w } => images::image_ui(ui, bctx.base_dir, p, w, look),
+        Block::Image { path: p, width: w } => {
+            if let Some(e) = images::image_ui(ui, bctx.base_dir, p, w, look) {
+                let at = format!("{}.path", block_ron_path(bctx.slide_index, path));
+                state.note_problem(located_problem(ui.ctx(), bctx, &at, p, None, e));
+            }
+        }
         Block::Widget(spec) => {
             let (rect, _) = ui.allocate_exact_size(vec2(width, flex_h), Sense::hover());
             let mut child = ui.new_child(
@@ -482,8 +487,47 @@ fn placeholder_height(src: &str, look: &Look) -> f32 {
     look.scaled(size::MATH * em * lines)
 }
 
-/// The problem line for a formula's error: at its line and column in the deck file when the
-/// deck came from one, else by its place on the slide. Cached per error (it reads the file).
+/// `slides[3].body[1][0]`: the [`crate::ron_tree`] path of the block at `path` on a slide.
+fn block_ron_path(slide: usize, path: &[usize]) -> String {
+    let mut p = format!("slides[{slide}].body");
+    for i in path {
+        p.push_str(&format!("[{i}]"));
+    }
+    p
+}
+
+/// A problem with the string `written` at `ron_path` in the deck (its character `col`, 1-based,
+/// if given) as `file:line:col: message` when the deck came from a file that still has that
+/// string there, else the message alone. Cached per problem (it reads the deck file).
+fn located_problem(
+    ctx: &egui::Context,
+    bctx: &BlockCtx,
+    ron_path: &str,
+    written: &str,
+    col: Option<usize>,
+    message: String,
+) -> String {
+    let Some(file) = bctx.deck_file else {
+        return message;
+    };
+    let id =
+        egui::Id::unique(("lectern-located-problem", file, ron_path, written, col)).with(&message);
+    if let Some(line) = ctx.data(|d| d.get_temp::<String>(id)) {
+        return line;
+    }
+    let diag = std::fs::read_to_string(file)
+        .ok()
+        .and_then(|text| crate::math::deck::position(&text, ron_path, written, col))
+        .map_or_else(
+            || crate::diag::Diagnostic::whole_file(file, &message),
+            |(line, col)| crate::diag::Diagnostic::new(file, line, col, &message),
+        );
+    let line = diag.to_string();
+    ctx.data_mut(|d| d.insert_temp(id, line.clone()));
+    line
+}
+
+/// The problem line for a formula's error, at the formula's character in the deck file.
 fn formula_problem(
     ctx: &egui::Context,
     bctx: &BlockCtx,
@@ -492,27 +536,14 @@ fn formula_problem(
     latex: bool,
     err: &crate::math::MathError,
 ) -> String {
-    let fallback = || format!("formula {path:?}: {err}");
-    let Some(file) = bctx.deck_file else {
-        return fallback();
+    let at = format!("{}.src", block_ron_path(bctx.slide_index, path));
+    // Columns only make sense against what the lecturer typed, i.e. for Typst input.
+    let col = if latex { None } else { err.col };
+    let message = match (bctx.deck_file, col) {
+        (Some(_), _) | (None, None) => crate::math::deck::message(err),
+        (None, Some(c)) => format!("formula {path:?}, column {c}: {}", err.message),
     };
-    let id = egui::Id::unique(("lectern-formula-problem", file, bctx.slide_index, path, src))
-        .with(err.to_string());
-    if let Some(line) = ctx.data(|d| d.get_temp::<String>(id)) {
-        return line;
-    }
-    let f = crate::math::deck::DeckFormula {
-        slide: bctx.slide_index,
-        path: path.to_vec(),
-        src,
-        syntax: syntax_of(latex),
-    };
-    let line = std::fs::read_to_string(file)
-        .ok()
-        .map(|text| crate::math::deck::diagnostic(file, &text, &f, err).to_string())
-        .unwrap_or_else(fallback);
-    ctx.data_mut(|d| d.insert_temp(id, line.clone()));
-    line
+    located_problem(ctx, bctx, &at, src, col, message)
 }
 
 /// Display maths, typeset by Typst (`crate::math`) and centred. A formula still being typeset

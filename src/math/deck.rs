@@ -9,7 +9,6 @@ use super::typeset::{MathError, MathSyntax};
 use super::wire::Request;
 use crate::deck::{Block, Deck};
 use crate::diag::Diagnostic;
-use crate::ron_tree;
 
 /// One `Math` block of a deck.
 #[derive(Debug, Clone, PartialEq)]
@@ -84,21 +83,23 @@ pub fn formulas(deck: &Deck, slides: Option<std::ops::Range<usize>>) -> Vec<Deck
 
 /// 1-based line and column in the deck `text` of the formula at `ron_path` (see [`ron_path`]):
 /// of its character `col` (1-based, as [`MathError::col`]) if given, else of the string's
-/// first character. `None` if the text has no such string or it is not `src` (the file changed
-/// since the deck was loaded).
+/// first character; `None` if the text no longer has `src` there.
 pub fn position(
     text: &str,
     ron_path: &str,
     src: &str,
     col: Option<usize>,
 ) -> Option<(usize, usize)> {
-    let tree = ron_tree::parse(text).ok()?;
-    let node = tree.at(ron_path)?;
-    if node.as_str()? != src {
-        return None;
+    crate::deck::files::string_position(text, ron_path, src, col)
+}
+
+/// "formula: unknown variable: q", or the bounds' own "formula stopped after 2 s …".
+pub fn message(err: &MathError) -> String {
+    if err.message.starts_with("formula ") {
+        err.message.clone()
+    } else {
+        format!("formula: {}", err.message)
     }
-    let byte = node.str_offset(text, col.map_or(0, |c| c.saturating_sub(1)))?;
-    Some(ron_tree::line_col(text, byte))
 }
 
 /// The error of a formula as a diagnostic at its place in `file` (whose text is `text`).
@@ -107,7 +108,7 @@ pub fn diagnostic(file: &Path, text: &str, f: &DeckFormula, err: &MathError) -> 
         MathSyntax::Typst => err.col,
         MathSyntax::Latex => None,
     };
-    let message = format!("formula: {}", err.message);
+    let message = message(err);
     match position(text, &f.ron_path(), f.src, col) {
         Some((line, col)) => Diagnostic::new(file, line, col, message),
         None => Diagnostic::whole_file(file, format!("slide {}, {message}", f.slide + 1)),

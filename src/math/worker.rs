@@ -63,7 +63,7 @@ impl Bounds {
     pub fn memory_error(&self) -> MathError {
         MathError {
             message: format!(
-                "formula stopped: it used more than {} MB of memory",
+                "formula used more than {} MB of memory and was stopped",
                 self.memory_mb
             ),
             col: None,

@@ -127,7 +127,9 @@ impl Stability {
             .files
             .iter()
             .map(|f| {
-                let path = base_dir.map_or_else(|| f.into(), |b| b.join(f));
+                // Confined to the project, like every path a deck names (`crate::paths`).
+                let dir = base_dir.unwrap_or(std::path::Path::new("."));
+                let path = crate::paths::resolve_in_dir(dir, f).map_err(|e| e.to_string())?;
                 Tableau::load(&path).map_err(|e| e.to_string())
             })
             .collect();
