@@ -474,17 +474,10 @@ fn math_source_height(src: &str, look: &Look) -> f32 {
     look.scaled(size::MATH * 1.3 * lines + 48.0)
 }
 
-/// The height a formula is likely to take before it is typeset: one line of maths, taller
-/// with fractions, vectors or matrices (from the bundled deck's typeset heights).
+/// The height a formula is likely to take before it is typeset (so the blocks below it move
+/// little when it arrives).
 fn placeholder_height(src: &str, look: &Look) -> f32 {
-    let tall = [
-        "/", "frac", "vec(", "mat(", "cases(", "binom", "sum", "integral", "\\int",
-    ]
-    .iter()
-    .any(|t| src.contains(t));
-    let lines = src.matches("\\\\").count().max(src.lines().count()).max(1) as f32;
-    let em = if tall { 2.6 } else { 1.5 };
-    look.scaled(size::MATH * em * lines)
+    look.scaled(size::MATH * crate::math::typeset::estimated_height_em(src))
 }
 
 /// `slides[3].body[1][0]`: the [`crate::ron_tree`] path of the block at `path` on a slide.

@@ -13,6 +13,7 @@
 //! answer is "stopped after 2 s" and the thread is left to finish on its own), but not in memory.
 
 use std::path::PathBuf;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::mpsc::{RecvTimeoutError, channel};
 use std::sync::{Arc, Condvar, Mutex, OnceLock};
 use std::time::{Duration, Instant};
@@ -22,7 +23,7 @@ use super::wire::Request;
 use super::worker::{Bounds, Failure, TYPESET_STACK_BYTES, WorkerProcess};
 
 /// Unstarted jobs not asked for again within this long are dropped.
-pub const EXPIRE: Duration = Duration::from_secs(3);
+pub const EXPIRE: Duration = Duration::from_secs(10);
 
 /// Worker threads (each with its own process). Two: one formula that runs to its time budget
 /// does not hold up the others, and the workers run at low priority beside the window.
@@ -162,6 +163,8 @@ pub fn worker_program() -> Option<PathBuf> {
 
 pub struct Pool {
     queue: Mutex<Vec<Arc<Job>>>,
+    /// Jobs being typeset now.
+    running: AtomicUsize,
     ready: Condvar,
     bounds: Mutex<Bounds>,
     stats: Mutex<Stats>,
@@ -173,6 +176,7 @@ pub fn pool() -> &'static Pool {
     static POOL: OnceLock<Pool> = OnceLock::new();
     POOL.get_or_init(|| Pool {
         queue: Mutex::new(Vec::new()),
+        running: AtomicUsize::new(0),
         ready: Condvar::new(),
         bounds: Mutex::new(Bounds::default()),
         stats: Mutex::new(Stats::default()),
@@ -189,6 +193,12 @@ impl Pool {
     /// bound until they are restarted).
     pub fn set_bounds(&self, bounds: Bounds) {
         *self.bounds.lock().unwrap_or_else(|e| e.into_inner()) = bounds;
+    }
+
+    /// Formulas queued or being typeset.
+    pub fn busy(&self) -> usize {
+        let queued = self.queue.lock().map_or(0, |q| q.len());
+        queued + self.running.load(Ordering::Relaxed)
     }
 
     pub fn stats(&self) -> Stats {
@@ -270,6 +280,7 @@ impl Pool {
             }
             if let Some((i, _)) = best {
                 let job = queue.remove(i);
+                self.running.fetch_add(1, Ordering::Relaxed);
                 job.inner.lock().unwrap_or_else(|e| e.into_inner()).state = State::Running;
                 return job;
             }
@@ -332,6 +343,7 @@ impl Pool {
                 s.busy_us += us;
             });
             job.finish(result);
+            self.running.fetch_sub(1, Ordering::Relaxed);
         }
     }
 
