@@ -7,7 +7,7 @@ use std::path::Path;
 use super::{Block, Deck};
 use crate::diag::Diagnostic;
 use crate::ron_tree;
-use crate::widgets::WidgetSpec;
+use super::widgets::WidgetSpec;
 
 /// What kind of file a deck names, for messages and checks.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
