@@ -8,6 +8,7 @@ use std::time::{Duration, Instant};
 use egui::epaint::{ClippedShape, Shape};
 use egui::{Key, TextureId};
 use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
 use lectern::app::LecternApp;
 use lectern::deck::DeckSession;
 
@@ -82,13 +83,28 @@ fn a_slide_whose_formula_is_typesetting_is_drawn_at_once_and_the_formula_follows
     h.step();
     // Slide 1 shown: slide 2's formula is typeset ahead, in the background.
     let start = Instant::now();
-    while lectern::math::pool().stats().done == 0 {
+    while lectern::math::pool().busy() > 0 {
         assert!(
             start.elapsed() < Duration::from_secs(30),
             "nothing typeset ahead"
         );
         std::thread::sleep(Duration::from_millis(20));
     }
+
+    // Keep both workers busy for their whole time budget (two formulas that compute too
+    // much), so that the next formula certainly cannot be ready within a frame.
+    let busy: Vec<_> = (0..2)
+        .map(|i| {
+            let req = lectern::math::wire::Request {
+                src: format!("#range({}).map(i => i).len()", 100_000_000 + i),
+                syntax: lectern::math::MathSyntax::Typst,
+                size_px: 20.0,
+                rgba: [0, 0, 0, 255],
+            };
+            lectern::math::pool().submit(req, true, true, None)
+        })
+        .collect();
+    std::thread::sleep(Duration::from_millis(200)); // both picked up by the workers
 
     // Jump past what was typeset ahead: the very frame that handles the key draws the slide.
     h.key_press(Key::End);
@@ -110,6 +126,10 @@ fn a_slide_whose_formula_is_typesetting_is_drawn_at_once_and_the_formula_follows
 
     // It arrives without a key press: the pool asks for a repaint when it is done.
     assert_eq!(wait_for_formula(&mut h), 1);
+    for job in busy {
+        let err = job.wait().unwrap_err();
+        assert!(err.message.contains("stopped after"), "{err}");
+    }
 
     // Slide 2's formula was typeset ahead while slide 1 was shown: going there draws it at once.
     h.key_press(Key::Home);
@@ -121,5 +141,59 @@ fn a_slide_whose_formula_is_typesetting_is_drawn_at_once_and_the_formula_follows
     assert_eq!(
         images, 1,
         "typeset ahead: no placeholder when paging forward"
+    );
+}
+
+/// Tried as a lecturer would: a formula that computes far too much, saved while presenting.
+/// The slide stays (with the formula's last good picture), a notice names the formula's line
+/// and column, and the work was stopped at the budget in a worker, not in this process.
+#[test]
+fn a_heavy_formula_saved_while_presenting_is_stopped_and_named_at_its_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("talk.ron");
+    let good = r#"(
+    title: "Talk",
+    slides: [
+        (id: "a", title: "Growth", body: [
+            Text("before"),
+            Math(src: "x^2 + 1"),
+        ]),
+    ],
+)"#;
+    std::fs::write(&path, good).unwrap();
+    let mut h = harness(&path);
+    let ctx = h.ctx.clone();
+    h.state_mut().watch(&ctx);
+    h.step();
+    assert_eq!(wait_for_formula(&mut h), 1);
+
+    let heavy = good.replace("x^2 + 1", "#range(100000000).map(i => i).len()");
+    let byte = heavy.find("#range").unwrap();
+    let line = heavy[..byte].matches('\n').count() + 1;
+    let col = byte - heavy[..byte].rfind('\n').unwrap();
+    std::fs::write(&path, &heavy).unwrap();
+    let saved = Instant::now();
+    let notice = format!("talk.ron:{line}:{col}: formula stopped after 2 s");
+    loop {
+        std::thread::sleep(Duration::from_millis(20));
+        h.step();
+        let (texts, images) = drawn(&h.output().shapes);
+        assert!(
+            texts.iter().any(|t| t == "Growth"),
+            "the slide stays on screen"
+        );
+        assert_eq!(images, 1, "the last good formula stays on screen");
+        if h.query_by_label_contains(&notice).is_some() {
+            break;
+        }
+        assert!(
+            saved.elapsed() < Duration::from_secs(20),
+            "no notice {notice:?}; drawn: {texts:?}"
+        );
+    }
+    assert_eq!(
+        h.state().session().deck().slides[0].body.len(),
+        2,
+        "the new deck is on screen"
     );
 }

@@ -4,10 +4,10 @@
 
 use std::path::Path;
 
+use super::widgets::WidgetSpec;
 use super::{Block, Deck};
 use crate::diag::Diagnostic;
 use crate::ron_tree;
-use super::widgets::WidgetSpec;
 
 /// What kind of file a deck names, for messages and checks.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
