@@ -248,40 +248,8 @@ impl Pool {
     fn next_job(&self) -> Arc<Job> {
         let mut queue = self.queue.lock().unwrap_or_else(|e| e.into_inner());
         loop {
-            // Drop jobs nobody holds any more, and unwanted ones.
-            queue.retain(|job| {
-                if Arc::strong_count(job) == 1 {
-                    return false;
-                }
-                let mut inner = job.inner.lock().unwrap_or_else(|e| e.into_inner());
-                if !inner.keep && inner.wanted_at.elapsed() > EXPIRE {
-                    inner.state = State::Expired;
-                    drop(inner);
-                    job.done.notify_all();
-                    return false;
-                }
-                true
-            });
-            let key = |job: &Arc<Job>| {
-                let inner = job.inner.lock().unwrap_or_else(|e| e.into_inner());
-                (inner.urgent, inner.wanted_at)
-            };
-            let mut best: Option<(usize, (bool, Instant))> = None;
-            for (i, job) in queue.iter().enumerate() {
-                let k = key(job);
-                let better = match best {
-                    None => true,
-                    // urgent first; among urgent, the newest request; else first come
-                    Some((_, (bu, bt))) => (k.0 && !bu) || (k.0 && bu && k.1 > bt),
-                };
-                if better {
-                    best = Some((i, k));
-                }
-            }
-            if let Some((i, _)) = best {
-                let job = queue.remove(i);
+            if let Some(job) = pick(&mut queue) {
                 self.running.fetch_add(1, Ordering::Relaxed);
-                job.inner.lock().unwrap_or_else(|e| e.into_inner()).state = State::Running;
                 return job;
             }
             queue = self
@@ -335,7 +303,13 @@ impl Pool {
                         }
                     }
                 },
-                None => self.in_process(&job.req, &bounds),
+                None => {
+                    let r = in_process(&job.req, &bounds);
+                    if r.as_ref().is_err_and(|e| *e == bounds.time_error()) {
+                        self.count(|s| s.timed_out += 1);
+                    }
+                    r
+                }
             };
             let us = start.elapsed().as_micros() as u64;
             self.count(|s| {
@@ -350,43 +324,77 @@ impl Pool {
     fn count(&self, f: impl FnOnce(&mut Stats)) {
         f(&mut self.stats.lock().unwrap_or_else(|e| e.into_inner()));
     }
+}
 
-    /// Typesets on a fresh thread of this process, waiting at most the time budget.
-    fn in_process(&self, req: &Request, bounds: &Bounds) -> Result<RenderedFormula, MathError> {
-        let (tx, rx) = channel();
-        let req = req.clone();
-        let spawned = std::thread::Builder::new()
-            .name("typeset-inline".into())
-            .stack_size(TYPESET_STACK_BYTES)
-            .spawn(move || {
-                let r = std::panic::catch_unwind(|| {
-                    render_formula(&req.src, req.syntax, req.size_px, req.rgba)
-                });
-                // the waiter may have given up on us: nobody to tell
-                let _ = tx.send(r);
+/// Typesets on a fresh thread of this process, waiting at most the time budget.
+fn in_process(req: &Request, bounds: &Bounds) -> Result<RenderedFormula, MathError> {
+    let (tx, rx) = channel();
+    let req = req.clone();
+    let spawned = std::thread::Builder::new()
+        .name("typeset-inline".into())
+        .stack_size(TYPESET_STACK_BYTES)
+        .spawn(move || {
+            let r = std::panic::catch_unwind(|| {
+                render_formula(&req.src, req.syntax, req.size_px, req.rgba)
             });
-        if let Err(e) = spawned {
-            return Err(MathError {
-                message: format!("cannot typeset: {e}"),
-                col: None,
-            });
+            // the waiter may have given up on us: nobody to tell
+            let _ = tx.send(r);
+        });
+    if let Err(e) = spawned {
+        return Err(MathError {
+            message: format!("cannot typeset: {e}"),
+            col: None,
+        });
+    }
+    match rx.recv_timeout(bounds.time) {
+        Ok(Ok(r)) => r,
+        Ok(Err(_)) => Err(MathError {
+            message: "the typesetter failed on this formula (internal error)".into(),
+            col: None,
+        }),
+        Err(RecvTimeoutError::Timeout) => Err(bounds.time_error()),
+        Err(RecvTimeoutError::Disconnected) => Err(MathError {
+            message: "the typesetter stopped unexpectedly".into(),
+            col: None,
+        }),
+    }
+}
+
+/// Takes the next job to run from `queue` (marking it running): urgent first, the newest
+/// request first among those; else first come. Drops jobs nobody holds any more, and expires
+/// unwanted ones.
+fn pick(queue: &mut Vec<Arc<Job>>) -> Option<Arc<Job>> {
+    queue.retain(|job| {
+        if Arc::strong_count(job) == 1 {
+            return false;
         }
-        match rx.recv_timeout(bounds.time) {
-            Ok(Ok(r)) => r,
-            Ok(Err(_)) => Err(MathError {
-                message: "the typesetter failed on this formula (internal error)".into(),
-                col: None,
-            }),
-            Err(RecvTimeoutError::Timeout) => {
-                self.count(|s| s.timed_out += 1);
-                Err(bounds.time_error())
-            }
-            Err(RecvTimeoutError::Disconnected) => Err(MathError {
-                message: "the typesetter stopped unexpectedly".into(),
-                col: None,
-            }),
+        let mut inner = job.inner.lock().unwrap_or_else(|e| e.into_inner());
+        if !inner.keep && inner.wanted_at.elapsed() > EXPIRE {
+            inner.state = State::Expired;
+            drop(inner);
+            job.done.notify_all();
+            return false;
+        }
+        true
+    });
+    let key = |job: &Arc<Job>| {
+        let inner = job.inner.lock().unwrap_or_else(|e| e.into_inner());
+        (inner.urgent, inner.wanted_at)
+    };
+    let mut best: Option<(usize, (bool, Instant))> = None;
+    for (i, job) in queue.iter().enumerate() {
+        let k = key(job);
+        let better = match best {
+            None => true,
+            Some((_, (bu, bt))) => (k.0 && !bu) || (k.0 && bu && k.1 > bt),
+        };
+        if better {
+            best = Some((i, k));
         }
     }
+    let job = queue.remove(best?.0);
+    job.inner.lock().unwrap_or_else(|e| e.into_inner()).state = State::Running;
+    Some(job)
 }
 
 /// A worker that died of something other than the bounds (e.g. a stack overflow on absurdly
@@ -400,4 +408,75 @@ fn crash_error(why: &str, started: Instant, bounds: &Bounds) -> MathError {
         format!("the typesetter stopped on this formula ({why})")
     };
     MathError { message, col: None }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::MathSyntax;
+
+    fn req(src: &str) -> Request {
+        Request {
+            src: src.into(),
+            syntax: MathSyntax::Typst,
+            size_px: 30.0,
+            rgba: [0, 0, 0, 255],
+        }
+    }
+
+    /// Where no worker process can start, the caller still gets an answer at the budget.
+    #[test]
+    fn in_process_typesetting_answers_within_the_time_budget() {
+        let bounds = Bounds {
+            time: Duration::from_millis(200),
+            memory_mb: 64,
+        };
+        let t = Instant::now();
+        let r = in_process(&req("#range(400000).map(i => i).len()"), &bounds);
+        assert_eq!(r.unwrap_err(), bounds.time_error());
+        assert!(t.elapsed() < Duration::from_secs(2), "{:?}", t.elapsed());
+        assert!(in_process(&req("x^2"), &Bounds::default()).is_ok());
+    }
+
+    #[test]
+    fn urgent_newest_jobs_go_first_and_unwanted_ones_expire() {
+        // a private queue, through the pool's picking rule
+        let mk = |urgent: bool, age_ms: u64| {
+            Arc::new(Job {
+                req: req("x"),
+                inner: Mutex::new(JobInner {
+                    state: State::Queued,
+                    urgent,
+                    keep: false,
+                    wanted_at: Instant::now() - Duration::from_millis(age_ms),
+                    notify: None,
+                }),
+                done: Condvar::new(),
+            })
+        };
+        let (ahead, old_urgent, new_urgent, stale) = (
+            mk(false, 0),
+            mk(true, 500),
+            mk(true, 100),
+            mk(false, 60_000),
+        );
+        let mut queue = vec![
+            ahead.clone(),
+            old_urgent.clone(),
+            new_urgent.clone(),
+            stale.clone(),
+        ];
+        let order: Vec<_> = std::iter::from_fn(|| pick(&mut queue))
+            .map(|j| Arc::as_ptr(&j))
+            .collect();
+        assert_eq!(
+            order,
+            vec![
+                Arc::as_ptr(&new_urgent),
+                Arc::as_ptr(&old_urgent),
+                Arc::as_ptr(&ahead)
+            ]
+        );
+        assert_eq!(stale.poll(), Poll::Expired);
+    }
 }
