@@ -12,7 +12,6 @@ use std::time::{Duration, Instant};
 use crate::app::SlideState;
 use crate::app::slide_view::slide_ui;
 use crate::deck::{Deck, load_deck};
-use crate::math::wire::Request;
 use crate::math::worker::{Bounds, WorkerProcess};
 use crate::math::{MathSyntax, pool, render_formula, set_worker_program};
 
@@ -147,12 +146,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         for rep in 0..reps {
             // A new colour each time: a new Typst source, so nothing is memoised (the app
             // typesets each (formula, size, colour) once; that first time is what counts).
-            let req = Request {
-                src: f.src.to_owned(),
-                syntax: f.syntax,
-                size_px: em_px,
-                rgba: [255, 255, 255 - rep as u8, 255],
-            };
+            let req = f.request(em_px, [255, 255, 255 - rep as u8, 255]);
             let t = Instant::now();
             let r = render_formula(&req.src, req.syntax, req.size_px, req.rgba);
             a.push(ms(t.elapsed()));
@@ -266,15 +260,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     // as the window asks for formulas ahead, at a size not typeset yet
     let jobs: Vec<_> = all
         .iter()
-        .map(|f| {
-            let req = Request {
-                src: f.src.to_owned(),
-                syntax: f.syntax,
-                size_px: em_px * 2.0,
-                rgba: [255, 255, 255, 255],
-            };
-            pool().submit(req, false, true, None)
-        })
+        .map(|f| pool().submit(f.request(em_px * 2.0, [255; 4]), false, true, None))
         .collect();
     let t = Instant::now();
     let mut busy = Vec::new();

@@ -25,6 +25,16 @@ impl DeckFormula<'_> {
     pub fn ron_path(&self) -> String {
         ron_path(self.slide, &self.path)
     }
+
+    /// What to ask the pool for, at `size_px` pixels per em in `rgba`.
+    pub fn request(&self, size_px: f32, rgba: [u8; 4]) -> Request {
+        Request {
+            src: self.src.to_owned(),
+            syntax: self.syntax,
+            size_px,
+            rgba,
+        }
+    }
 }
 
 /// The [`ron_tree`] path of the `src` of the Math block at `path` on slide `slide`.
@@ -122,15 +132,7 @@ pub fn check_formulas(file: &Path, text: &str, deck: &Deck) -> Vec<Diagnostic> {
     // Queue them all first: both workers stay busy, and one slow formula costs its budget once.
     let jobs: Vec<_> = all
         .iter()
-        .map(|f| {
-            let req = Request {
-                src: f.src.to_owned(),
-                syntax: f.syntax,
-                size_px: 40.0,
-                rgba: [0, 0, 0, 255],
-            };
-            pool().submit(req, true, true, None)
-        })
+        .map(|f| pool().submit(f.request(40.0, [0, 0, 0, 255]), true, true, None))
         .collect();
     all.iter()
         .zip(jobs)
