@@ -139,3 +139,51 @@ fn ordinary_formulas_match_in_process_typesetting() {
         "it ran in a worker process"
     );
 }
+
+/// `lectern check` on a deck with a formula that computes too much and a picture from outside
+/// the project: both reported at their file:line:col within seconds, exit status 1.
+#[test]
+fn check_reports_a_heavy_formula_and_an_outside_image_at_their_positions() {
+    let dir = tempfile::tempdir().unwrap();
+    let slides = dir.path().join("slides");
+    std::fs::create_dir_all(&slides).unwrap();
+    let deck = r##"(
+    title: "t",
+    slides: [
+        (title: "a", body: [
+            Math(src: r#"#range(100000000).map(i => i).len()"#),
+            Image(path: "../../../../etc/passwd"),
+            Math(src: "x + undefinedthing(2)"),
+        ]),
+    ],
+)"##;
+    let path = slides.join("deck.ron");
+    std::fs::write(&path, deck).unwrap();
+    let t = Instant::now();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_lectern"))
+        .arg("check")
+        .arg(&path)
+        .output()
+        .unwrap();
+    let took = t.elapsed();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(1), "{stdout}");
+    assert!(within_budget(took), "check took {took:?}");
+    let shown = path.display();
+    for (needle, what) in [
+        ("#range", "formula stopped after 2 s"),
+        ("../../", "leads outside the project folder"),
+        ("undefinedthing", "unknown variable"),
+    ] {
+        let byte = deck.find(needle).unwrap();
+        let line = deck[..byte].matches('\n').count() + 1;
+        let col = byte - deck[..byte].rfind('\n').unwrap();
+        let want = format!("{shown}:{line}:{col}: ");
+        assert!(
+            stdout
+                .lines()
+                .any(|l| l.starts_with(&want) && l.contains(what)),
+            "no {want}…{what} in\n{stdout}"
+        );
+    }
+}

@@ -220,7 +220,7 @@ pub fn slide_problem_notice_ui(ui: &mut egui::Ui, problem: &str, palette: &Palet
         ui,
         "Slide problem",
         problem,
-        "the rest of the slide is shown; fix and save",
+        "the slide stays on screen; fix and save",
         palette,
     );
 }
