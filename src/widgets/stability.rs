@@ -378,6 +378,24 @@ mod tests {
         assert!(err.contains("nope.ron"), "{err}");
     }
 
+    /// Tableau files are confined to the project like every path a deck names.
+    #[test]
+    fn tableau_files_outside_the_project_are_refused() {
+        let base = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("slides");
+        let spec = StabilitySpec {
+            methods: vec![],
+            tableaux: vec![],
+            files: vec!["../../outside.ron".into(), "/etc/passwd".into()],
+            view: default_view(),
+            lambda: None,
+            h: 1.0,
+        };
+        let w = Stability::new_in(spec, Some(&base));
+        let errs: Vec<_> = w.loaded.iter().map(|r| r.as_ref().unwrap_err()).collect();
+        assert!(errs[0].contains("outside the project"), "{}", errs[0]);
+        assert!(errs[1].contains("absolute"), "{}", errs[1]);
+    }
+
     #[test]
     fn regions_are_translucent_method_colours() {
         let spec = StabilitySpec {
