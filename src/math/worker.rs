@@ -103,6 +103,12 @@ fn serve_on_this_thread(memory_mb: u64) -> std::io::Result<()> {
     unsafe {
         libc::setpriority(libc::PRIO_PROCESS, 0, 5);
     }
+    // If lectern goes (closed, crashed), a formula still computing goes with it instead of
+    // running on to its memory bound with nobody left to kill it at its time budget.
+    #[cfg(target_os = "linux")]
+    unsafe {
+        libc::prctl(libc::PR_SET_PDEATHSIG, libc::SIGKILL as libc::c_ulong);
+    }
     // Load fonts and warm Typst's caches before the limit, so it bounds the formula's own use.
     let _ = render_formula("x", super::MathSyntax::Typst, 20.0, [0, 0, 0, 255]);
     limit_address_space(memory_mb);
