@@ -21,7 +21,7 @@ fn texture(
     base_dir: Option<&Path>,
     path: &str,
 ) -> Result<egui::TextureHandle, String> {
-    let full = crate::paths::resolve_in_dir(base_dir.unwrap_or(Path::new(".")), path)
+    let full = crate::paths::resolve_in(base_dir.unwrap_or(Path::new(".")), path)
         .map_err(|e| format!("image not shown: {e}"))?;
     let modified = std::fs::metadata(&full).and_then(|m| m.modified()).ok();
     let id = egui::Id::unique(("lectern-image", &full));

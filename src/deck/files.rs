@@ -1,5 +1,5 @@
-//! Every file a deck names — pictures (`Image(path: ..)`) and tableau files of `Stability`
-//! widgets (`files: [..]`) — resolved through [`crate::paths`] (inside the project only), for
+//! Every file a deck names — pictures (`Image(path: ..)`), tableau files of `Stability`
+//! widgets (`files: [..]`), the scene of a `SimulationLoop` — resolved through [`crate::paths`] (inside the project only), for
 //! `lectern check`, with each problem at the line and column of the path string.
 
 use std::path::Path;
@@ -14,6 +14,7 @@ use crate::ron_tree;
 pub enum FileKind {
     Image,
     Tableau,
+    Scene,
 }
 
 /// One path written in a deck.
@@ -45,6 +46,11 @@ pub fn file_refs(deck: &Deck) -> Vec<FileRef<'_>> {
                         });
                     }
                 }
+                Block::Widget(WidgetSpec::SimulationLoop(s)) => out.push(FileRef {
+                    kind: FileKind::Scene,
+                    ron_path: format!("{here}.scene"),
+                    written: &s.scene,
+                }),
                 Block::Columns(cols) => {
                     for (c, col) in cols.iter().enumerate() {
                         walk(col, &format!("{here}[{c}]"), out);
@@ -94,12 +100,14 @@ pub fn check_deck_files(file: &Path, text: &str, deck: &Deck) -> Vec<Diagnostic>
                 FileKind::Tableau => crate::ode::Tableau::load(&path)
                     .err()
                     .map(|d| d.to_string()),
+                FileKind::Scene => crate::scene::load_scene(&path).err().map(|d| d.to_string()),
             },
         };
         if let Some(message) = problem {
             let what = match r.kind {
                 FileKind::Image => "image",
                 FileKind::Tableau => "tableau file",
+                FileKind::Scene => "scene file",
             };
             let message = format!("{what}: {message}");
             out.push(match string_position(text, &r.ron_path, r.written, None) {
@@ -172,6 +180,7 @@ mod tests {
     Columns([[Text("x")], [Image(path: "figures/link.png")]]),
     Widget(Stability((files: ["tableaux/t.ron", "../../t.ron"]))),
     Image(path: "figures/missing.png"),
+    Widget(SimulationLoop((scene: "../../water.ron"))),
 ])])"#,
             abs = secret.display()
         );
@@ -184,7 +193,7 @@ mod tests {
             .iter()
             .map(|d| ((d.line, d.col), d.message.as_str()))
             .collect();
-        assert_eq!(ds.len(), 5, "{got:#?}");
+        assert_eq!(ds.len(), 6, "{got:#?}");
         assert_eq!((ds[0].line, ds[0].col), at(&text, "\"../../../../etc"));
         assert!(ds[0].message.contains("outside the project"), "{}", ds[0]);
         assert_eq!(
@@ -198,5 +207,7 @@ mod tests {
         assert!(ds[3].message.starts_with("tableau file"), "{}", ds[3]);
         assert_eq!((ds[4].line, ds[4].col), at(&text, "\"figures/missing"));
         assert!(ds[4].message.contains("no such file"), "{}", ds[4]);
+        assert_eq!((ds[5].line, ds[5].col), at(&text, "\"../../water"));
+        assert!(ds[5].message.starts_with("scene file"), "{}", ds[5]);
     }
 }

@@ -96,7 +96,7 @@ impl Stability {
             .map(|f| {
                 // Confined to the project, like every path a deck names (`crate::paths`).
                 let dir = base_dir.unwrap_or(std::path::Path::new("."));
-                let path = crate::paths::resolve_in_dir(dir, f).map_err(|e| e.to_string())?;
+                let path = crate::paths::resolve_in(dir, f).map_err(|e| e.to_string())?;
                 Tableau::load(&path).map_err(|e| e.to_string())
             })
             .collect();
