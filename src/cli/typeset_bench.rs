@@ -13,7 +13,7 @@ use crate::app::SlideState;
 use crate::app::slide_view::slide_ui;
 use crate::deck::{Deck, load_deck};
 use crate::math::worker::{Bounds, WorkerProcess};
-use crate::math::{MathSyntax, pool, render_formula, set_worker_program};
+use crate::math::{MathCache, MathSyntax, pool, render_formula, set_worker_program};
 
 /// Measure typesetting costs on a deck.
 #[derive(Debug, clap::Args)]
@@ -23,9 +23,10 @@ pub struct Args {
     /// Repetitions per measurement (medians are reported).
     #[arg(long, default_value_t = 5)]
     pub reps: usize,
+    /// Window size in points, WIDTHxHEIGHT.
+    #[arg(long, default_value = "1280x720", value_parser = super::export::parse_size)]
+    pub size: [u32; 2],
 }
-
-const WINDOW: egui::Vec2 = egui::vec2(1280.0, 720.0);
 
 fn ms(d: Duration) -> f64 {
     d.as_secs_f64() * 1e3
@@ -48,10 +49,11 @@ fn median(mut v: Vec<f64>) -> f64 {
 struct Frames {
     ctx: egui::Context,
     states: Vec<SlideState>,
+    window: egui::Vec2,
 }
 
 impl Frames {
-    fn new(deck: &Deck, live: bool) -> Self {
+    fn new(deck: &Deck, live: bool, window: egui::Vec2) -> Self {
         let ctx = egui::Context::default();
         if live {
             crate::math::never_wait(&ctx);
@@ -59,6 +61,7 @@ impl Frames {
         let f = Self {
             ctx,
             states: deck.slides.iter().map(|_| SlideState::default()).collect(),
+            window,
         };
         // fonts arrive with the second pass
         let mut plain = deck.clone();
@@ -66,7 +69,7 @@ impl Frames {
         plain.slides[0].body.clear();
         let mut s = SlideState::default();
         for _ in 0..3 {
-            let mut out = f.ctx.run_ui(Self::input(), |ui| {
+            let mut out = f.ctx.run_ui(f.input(), |ui| {
                 slide_ui(ui, &plain, 0, &mut s);
             });
             out.textures_delta.clear(); // no GPU here
@@ -74,9 +77,9 @@ impl Frames {
         f
     }
 
-    fn input() -> egui::RawInput {
+    fn input(&self) -> egui::RawInput {
         egui::RawInput {
-            screen_rect: Some(egui::Rect::from_min_size(egui::Pos2::ZERO, WINDOW)),
+            screen_rect: Some(egui::Rect::from_min_size(egui::Pos2::ZERO, self.window)),
             ..Default::default()
         }
     }
@@ -84,7 +87,8 @@ impl Frames {
     /// One frame of slide `i`: its time and how many formulas it drew as pictures.
     fn frame(&mut self, deck: &Deck, i: usize) -> (Duration, usize) {
         let t = Instant::now();
-        let mut out = self.ctx.run_ui(Self::input(), |ui| {
+        let input = self.input();
+        let mut out = self.ctx.run_ui(input, |ui| {
             slide_ui(ui, deck, i, &mut self.states[i]);
         });
         let took = t.elapsed();
@@ -119,15 +123,16 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let path = args.deck.unwrap_or_else(super::present::default_deck);
     let deck = load_deck(&path).map_err(|d| anyhow::anyhow!("{d}"))?;
     let reps = args.reps.max(1);
+    let window = egui::vec2(args.size[0] as f32, args.size[1] as f32);
     let exe = std::env::current_exe()?;
-    let em_px = crate::app::theme::size::MATH * WINDOW.x / crate::app::theme::CANVAS_WIDTH;
+    let em_px = crate::app::theme::size::MATH * window.x / crate::app::theme::CANVAS_WIDTH;
     println!(
         "deck {}: {} slides, {} formulas; window {}x{} (formulas at {em_px:.1} px/em)\n",
         path.display(),
         deck.slides.len(),
         crate::math::deck::formulas(&deck, None).len(),
-        WINDOW.x,
-        WINDOW.y
+        window.x,
+        window.y
     );
 
     // 1. The worker mechanism, per formula.
@@ -140,17 +145,19 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         drop(w);
     }
     let mut worker = WorkerProcess::start(&exe, &bounds).map_err(|e| anyhow::anyhow!(e))?;
-    let (mut inproc, mut piped, mut overhead) = (Vec::new(), Vec::new(), Vec::new());
+    // Per formula: the first time (cold: Typst memoises, and the app typesets each (formula,
+    // size, colour) once, so this is what a slide pays) and the median of the repeats (warm:
+    // what is left is the pipe and the process switch).
+    let mut cold = [Vec::new(), Vec::new(), Vec::new()];
+    let mut warm = [Vec::new(), Vec::new(), Vec::new()];
     for f in crate::math::deck::formulas(&deck, None) {
+        let req = f.request(em_px, [255, 255, 255, 255]);
         let (mut a, mut b) = (Vec::new(), Vec::new());
-        for rep in 0..reps {
-            // A new colour each time: a new Typst source, so nothing is memoised (the app
-            // typesets each (formula, size, colour) once; that first time is what counts).
-            let req = f.request(em_px, [255, 255, 255 - rep as u8, 255]);
+        for _ in 0..=reps {
             let t = Instant::now();
             let r = render_formula(&req.src, req.syntax, req.size_px, req.rgba);
             a.push(ms(t.elapsed()));
-            if rep == 0 && std::env::var_os("LECTERN_BENCH_HEIGHTS").is_some() {
+            if a.len() == 1 && std::env::var_os("LECTERN_BENCH_HEIGHTS").is_some() {
                 let h = r.map_or(0.0, |r| r.height as f32 / em_px);
                 println!("height {h:.2} em: {}", f.src);
             }
@@ -158,42 +165,42 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             let _ = worker.typeset(&req, &bounds);
             b.push(ms(t.elapsed()));
         }
-        let (a, b) = (median(a), median(b));
-        inproc.push(a);
-        piped.push(b);
-        overhead.push(b - a);
+        for (k, v) in [a[0], b[0], b[0] - a[0]].into_iter().enumerate() {
+            cold[k].push(v);
+        }
+        let (wa, wb) = (median(a[1..].to_vec()), median(b[1..].to_vec()));
+        for (k, v) in [wa, wb, wb - wa].into_iter().enumerate() {
+            warm[k].push(v);
+        }
     }
     drop(worker);
-    println!("## Cost of the worker mechanism (medians over the deck's formulas)\n");
-    println!("| | ms |\n|---|---:|");
+    let [cold_a, cold_b, cold_d] = cold.map(median);
+    let [warm_a, warm_b, warm_d] = warm.map(median);
+    println!("## Cost of the worker mechanism (medians over the deck's formulas, ms)\n");
+    println!("| | first time (what a slide pays) | again (Typst's memo warm) |");
+    println!("|---|---:|---:|");
+    println!("| typeset + rasterise in this process | {cold_a:.2} | {warm_a:.2} |");
+    println!("| the same through a warm worker process | {cold_b:.2} | {warm_b:.2} |");
     println!(
-        "| typeset + rasterise in this process | {:.2} |",
-        median(inproc.clone())
+        "| difference per formula (median of per-formula differences) | {cold_d:.2} | {warm_d:.2} |"
     );
     println!(
-        "| the same through a warm worker process (pipe both ways) | {:.2} |",
-        median(piped.clone())
-    );
-    println!(
-        "| overhead per formula (median of per-formula differences) | {:.2} |",
-        median(overhead)
-    );
-    println!(
-        "| starting a worker (spawn, load fonts, first formula) | {:.1} |",
+        "| starting a worker (spawn, load fonts, first formula), median of {reps} | {:.1} | |",
         median(starts)
     );
     println!();
 
     // 2. First visit of each slide: key press -> slide fully drawn.
     set_worker_program(None);
-    let mut before = Frames::new(&deck, false);
+    let mut before = Frames::new(&deck, false, window);
     set_worker_program(Some(exe.clone()));
-    let mut after = Frames::new(&deck, true);
+    let mut after = Frames::new(&deck, true, window);
     println!("## First visit of each slide, key press → fully drawn (ms)\n");
     println!(
         "| slide | formulas | before: the frame (typesets inside) | after, paging forward: the frame | after: formulas on screen | after, jumping there cold: the frame | … fully drawn |"
     );
     println!("|---|---:|---:|---:|---:|---:|---:|");
+    let mut cold = Frames::new(&deck, true, window);
     let (mut tb, mut ta, mut tc) = (Vec::new(), Vec::new(), Vec::new());
     let mut placeholders_paging = 0;
     for i in 0..deck.slides.len() {
@@ -207,7 +214,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         }
         let key = Instant::now();
         let (a, drawn) = after.frame(&deck, i);
-        if drawn < n {
+        if drawn < n && i > 0 {
             placeholders_paging += 1;
         }
         let full = if drawn >= n {
@@ -215,8 +222,16 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         } else {
             until_drawn(&mut after, &deck, i, n, key, drawn)
         };
-        // after, cold jump (nothing typeset ahead: a fresh window)
-        let mut cold = Frames::new(&deck, true);
+        // after, cold jump (nothing typeset ahead: the same window, its formulas forgotten)
+        cold.frame(&deck, (i + deck.slides.len() / 2) % deck.slides.len());
+        settle(
+            &mut cold,
+            &deck,
+            (i + deck.slides.len() / 2) % deck.slides.len(),
+        );
+        if let Ok(mut c) = MathCache::shared(&cold.ctx).lock() {
+            c.clear();
+        }
         let key = Instant::now();
         let (c, cold_drawn) = cold.frame(&deck, i);
         let cold_full = if cold_drawn >= n {
@@ -241,7 +256,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         }
     }
     println!(
-        "\nslides with formulas, medians: before {:.1} ms, after (paging) {:.1} ms, after (cold jump) {:.1} ms; placeholders seen while paging forward: {placeholders_paging}\n",
+        "\nslides with formulas, medians: before {:.1} ms, after (paging) {:.1} ms, after (cold jump) {:.1} ms; slides that showed a placeholder when paged to (from the previous one): {placeholders_paging}\n",
         median(tb),
         median(ta),
         median(tc)
@@ -251,7 +266,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let busy_slide = (0..deck.slides.len())
         .find(|&i| formula_count(&deck, i) == 0)
         .unwrap_or(0);
-    let mut frames = Frames::new(&deck, true);
+    let mut frames = Frames::new(&deck, true, window);
     let mut idle = Vec::new();
     for _ in 0..60 {
         idle.push(ms(frames.frame(&deck, busy_slide).0));
@@ -260,7 +275,14 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     // as the window asks for formulas ahead, at a size not typeset yet
     let jobs: Vec<_> = all
         .iter()
-        .map(|f| pool().submit(f.request(em_px * 2.0, [255; 4]), false, true, None))
+        .map(|f| {
+            pool().submit(
+                f.request(em_px * 2.0, [200, 220, 255, 255]),
+                false,
+                true,
+                None,
+            )
+        })
         .collect();
     let t = Instant::now();
     let mut busy = Vec::new();

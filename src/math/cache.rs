@@ -120,6 +120,12 @@ impl MathCache {
         self.wait
     }
 
+    /// Forgets every formula and last good picture (as after a fresh start).
+    pub fn clear(&mut self) {
+        self.entries.clear();
+        self.last_good.clear();
+    }
+
     /// The formula for `src` at `size_px` physical pixels per em in `color`, typeset on first
     /// use and cached (errors are cached too, so a broken formula costs nothing per frame).
     /// Always waits for the result (bounded by the pool's time budget).
