@@ -34,7 +34,7 @@ fn harness(path: &Path) -> Harness<'static, LecternApp> {
     Harness::builder()
         .with_size([960.0, 540.0])
         .wgpu()
-        .with_context_setup(|ctx| lectern::math::never_wait(ctx))
+        .with_context_setup(lectern::math::never_wait)
         .build_ui_state(|ui, app: &mut LecternApp| app.frame_ui(ui), app)
 }
 

@@ -386,7 +386,8 @@ fn pick(queue: &mut Vec<Arc<Job>>) -> Option<Arc<Job>> {
         let k = key(job);
         let better = match best {
             None => true,
-            Some((_, (bu, bt))) => (k.0 && !bu) || (k.0 && bu && k.1 > bt),
+            // urgent beats not urgent; among urgent, the newer request wins
+            Some((_, (bu, bt))) => k.0 && (!bu || k.1 > bt),
         };
         if better {
             best = Some((i, k));
