@@ -377,12 +377,13 @@ pub fn slide_ui_with(
     content.set_style(blocks::widget_style(ui.style(), &look, deck.theme));
     content.set_clip_rect(canvas.intersect(ui.clip_rect()));
     state.problems.clear();
-    state.deck_path.clone_from(&deck.path);
+    state.deck_path.clone_from(&deck.file);
     let bctx = BlockCtx {
         look,
         slide_key: slide.key(),
         base_dir: deck.base_dir.as_deref(),
-        deck_path: deck.path.as_deref(),
+        deck_file: deck.file.as_deref(),
+        slide_index: index,
     };
     match slide.layout {
         Layout::Content => content_slide_ui(&mut content, slide, &bctx, state),
@@ -391,6 +392,8 @@ pub fn slide_ui_with(
     if options.footer && slide.layout == Layout::Content {
         footer_ui(ui, deck, index, canvas, &look);
     }
+    // Typeset the neighbours' formulas in the background, so paging finds them ready.
+    blocks::prefetch_formulas(ui.ctx(), deck, index.saturating_sub(1)..index + 3, &look);
     SlideResponse {
         canvas,
         scale,

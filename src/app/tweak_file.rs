@@ -89,7 +89,7 @@ impl TweakFile {
             return Vec::new();
         };
         // Widgets made now must find the deck's files (tableaux) as a draw would.
-        state.set_deck_path(deck.path.as_deref());
+        state.set_deck_path(deck.file.as_deref());
         state.ensure_widgets(slide);
         let order = widget_paths(slide);
         let mut problems = Vec::new();

@@ -143,14 +143,16 @@ fn check_file(file: &Path, report: &mut Report) {
                     deck.slides.len(),
                     minutes(deck.planned_secs())
                 ));
+                // The files it names (confined to the project) and its formulas (typeset
+                // within the same time and memory bounds as in the window).
+                let text = std::fs::read_to_string(file).unwrap_or_default();
+                let mut problems = crate::deck::files::check_deck_files(file, &text, &deck);
+                problems.extend(crate::math::deck::check_formulas(file, &text, &deck));
                 // A widget whose equation or tableau does not load leaves the talk running,
                 // but it is still a problem to fix before the talk.
-                let widget_problems: Vec<Diagnostic> = deck
-                    .widget_problems
-                    .iter()
-                    .map(|p| p.diagnostic.clone())
-                    .collect();
-                as_result(widget_problems)
+                problems.extend(deck.widget_problems.iter().map(|p| p.diagnostic.clone()));
+                problems.sort_by_key(|d| (d.line, d.col));
+                as_result(problems)
             }
             Err(d) => Err(vec![d]),
         },

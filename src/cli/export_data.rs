@@ -22,7 +22,7 @@ pub fn write_data(deck: &Deck, dir: &Path, tweaks: &TweakFile) -> anyhow::Result
     let mut written = Vec::new();
     for (i, slide) in deck.slides.iter().enumerate() {
         let mut state = SlideState::default();
-        state.set_deck_path(deck.path.as_deref());
+        state.set_deck_path(deck.file.as_deref());
         state.ensure_widgets(slide);
         // warnings about stale tweaks are printed by the PNG export
         let _ = tweaks.apply(deck, i, &mut state);

@@ -30,7 +30,7 @@ pub fn load_deck(path: &Path) -> Result<Deck, Diagnostic> {
 pub fn parse_deck_file(text: &str, path: &Path) -> Result<Deck, Diagnostic> {
     let mut deck = parse_deck(text, path)?;
     deck.base_dir = path.parent().map(Path::to_path_buf);
-    deck.path = Some(path.to_path_buf());
+    deck.file = Some(path.to_path_buf());
     Ok(deck)
 }
 
@@ -116,7 +116,12 @@ pub fn widget_problems(deck: &Deck, text: &str, file: &Path) -> Vec<WidgetProble
                         .and_then(|t| t.at(&at))
                         .and_then(|n| n.str_offset(text, 0))
                         .map_or((0, 0), |b| crate::ron_tree::line_col(text, b));
-                    push(Diagnostic::new(file, line, col, msg));
+                    push(Diagnostic::new(
+                        file,
+                        line,
+                        col,
+                        format!("tableau file: {msg}"),
+                    ));
                 }
             }
         }

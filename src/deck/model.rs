@@ -23,10 +23,10 @@ pub struct Deck {
     /// The folder the deck was loaded from; image paths are relative to it. Not in the file.
     #[serde(skip)]
     pub base_dir: Option<PathBuf>,
-    /// The deck file itself (widgets resolve problem and tableau files against it). Not in the
-    /// file.
+    /// The file the deck was loaded from (to place errors found while drawing, e.g. a formula
+    /// over its time budget, at their line and column). Not in the file.
     #[serde(skip)]
-    pub path: Option<PathBuf>,
+    pub file: Option<PathBuf>,
     /// Problems of single widgets found while loading (an equation that does not compile, a
     /// missing problem or tableau file), at the deck's own line and column. They do not stop
     /// the talk: that widget shows its error (or its last good equation), the rest works.

@@ -364,6 +364,26 @@ mod tests {
         assert!(err.contains("nope.ron"), "{err}");
     }
 
+    /// Tableau files are confined to the project like every path a deck names.
+    #[test]
+    fn tableau_files_outside_the_project_are_refused() {
+        let deck = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("slides/lecture.ron");
+        let spec = StabilitySpec {
+            methods: vec![
+                MethodRef::Tableau("../../outside.ron".into()),
+                MethodRef::Tableau("/etc/passwd".into()),
+            ],
+            tableaux: vec![],
+            view: default_view(),
+            lambda: None,
+            h: 1.0,
+        };
+        let w = Stability::new_in(spec, Some(&deck));
+        let errs = &w.methods.errors;
+        assert!(errs[0].contains("outside the project"), "{}", errs[0]);
+        assert!(errs[1].contains("absolute"), "{}", errs[1]);
+    }
+
     #[test]
     fn regions_are_translucent_method_colours() {
         let spec = StabilitySpec {
