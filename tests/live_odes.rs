@@ -635,6 +635,12 @@ fn parameters_and_typed_equations_write_back_to_the_deck_or_the_problem_file() {
             .replace("{\"lambda\": -5.0}", "{\"lambda\": -3.0}")
             .replace("[\"lambda*y\"]", "[\"lambda*y + 0.1\"]")
     );
+    // the running app re-reads the problem file when the watcher reports it: nothing is a
+    // tweak any more (the deck itself reloads through its own file, as before)
+    state.reload_problem_files(std::slice::from_ref(&problem));
+    let ode = state.widget_at(&[0]).unwrap().ode().unwrap();
+    assert!(ode.typed().is_empty());
+    assert_eq!(ode.file_def().unwrap().params["lambda"], -3.0);
     // the files re-read to the new values
     let again = load_deck(&path).unwrap();
     let mut fresh = SlideState::default();
