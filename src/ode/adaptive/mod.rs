@@ -164,8 +164,10 @@ pub(crate) fn drive<T: Trial>(
         _ => trial.initial_step(t0, t_end, tol),
     };
     let mut t = t0;
-    // Hairer's FACOLD: the previous accepted error, at least 1e-4
-    let mut err_prev = 1e-4f64;
+    // Hairer's FACOLD (the previous accepted error, at least 1e-4), kept as its logarithm so a
+    // step costs one ln and one exp rather than two powf
+    let ln_floor = 1e-4f64.ln();
+    let mut ln_err_prev = ln_floor;
     let mut after_reject = false;
     let mut nonfinite = false;
     while t < t_end {
@@ -206,13 +208,11 @@ pub(crate) fn drive<T: Trial>(
             t = t_new;
             run.t = t;
             let fac_max = if after_reject { 1.0 } else { ctrl.fac_max };
-            let fac = if ctrl.beta == 0.0 {
-                ctrl.safety * err.powf(-ctrl.alpha)
-            } else {
-                ctrl.safety * err.powf(-ctrl.alpha) * err_prev.powf(ctrl.beta)
-            };
+            // safety · err^(−α) · err_prev^β (err = 0 gives +∞, clamped to fac_max)
+            let ln_err = err.ln();
+            let fac = ctrl.safety * (ctrl.beta * ln_err_prev - ctrl.alpha * ln_err).exp();
             h = h_try * fac.clamp(ctrl.fac_min, fac_max);
-            err_prev = err.max(1e-4);
+            ln_err_prev = ln_err.max(ln_floor);
             after_reject = false;
             nonfinite = false;
         } else {
