@@ -153,7 +153,7 @@ fn out_of_bounds(x: &[f64], bound: f64) -> bool {
 /// Checks that a symplectic method gets a second-order system: even dimension and q' = v.
 fn check_second_order<S: System + ?Sized>(sys: &S, t0: f64, x0: &[f64]) -> Result<(), String> {
     let n = x0.len();
-    if n % 2 != 0 {
+    if !n.is_multiple_of(2) {
         return Err(format!(
             "symplectic methods need a state (q, v) of even length, got {n}"
         ));

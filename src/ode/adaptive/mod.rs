@@ -89,6 +89,7 @@ pub(crate) struct Run {
     pub outcome: Outcome,
 }
 
+#[allow(clippy::neg_cmp_op_on_partial_ord)] // deliberately true for NaN
 fn beyond(x: &[f64], bound: f64) -> bool {
     let lim = bound.min(f64::MAX);
     let mut bad = false;
@@ -181,7 +182,8 @@ pub(crate) fn drive<T: Trial>(
         // stretch the last step by up to 1 % rather than leave a sliver (as dop853.f)
         let last = t + 1.01 * h >= t_end;
         let h_try = if last { t_end - t } else { h };
-        if !(h_try > f64::EPSILON * 4.0 * t.abs().max(1e-300)) {
+        let too_small = h_try <= f64::EPSILON * 4.0 * t.abs().max(1e-300);
+        if too_small || h_try.is_nan() {
             let reason = if nonfinite {
                 format!("{} (step size underflow, h = {h_try:e})", T::NONFINITE)
             } else {

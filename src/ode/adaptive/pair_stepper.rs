@@ -123,9 +123,9 @@ where
             sum5 += (e / sc) * (e / sc);
             if let Some(e3) = &coef.e3 {
                 let mut e = 0.0;
-                for j in 0..S {
-                    if e3[j] != 0.0 {
-                        e += e3[j] * self.k[j].as_ref()[m];
+                for (w, k) in e3.iter().zip(&self.k) {
+                    if *w != 0.0 {
+                        e += w * k.as_ref()[m];
                     }
                 }
                 sum3 += (e / sc) * (e / sc);
