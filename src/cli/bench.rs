@@ -48,20 +48,16 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         args.repeats
     )?;
     let sweep = Sweep {
-        methods: vec![
+        methods: [
             Method::Euler,
             Method::Midpoint,
             Method::Heun,
             Method::Rk4,
             Method::Verlet,
-            Method::Dopri5,
-            Method::Tsit5,
-            Method::Vern6,
-            Method::Vern7,
-            Method::Vern8,
-            Method::Dop853,
-            Method::Vern9,
-        ],
+        ]
+        .into_iter()
+        .chain(Method::PAIRS)
+        .collect(),
         hs: Vec::new(),
         tols: (3..=12).step_by(1).map(|k| 10f64.powi(-k)).collect(),
         repeats: args.repeats,
