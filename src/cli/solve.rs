@@ -8,7 +8,7 @@ use anyhow::{Context, bail};
 
 use crate::ode::problem::Problem;
 use crate::ode::{
-    Adaptive, Method, Outcome, Solution, Tableau, solve_adaptive, solve_fixed,
+    Adaptive, Method, Outcome, Solution, Tableau, solve_embedded, solve_fixed,
     solve_implicit_adaptive, solve_tableau,
 };
 
@@ -18,22 +18,23 @@ pub struct Args {
     /// The problem (RON: name, vars, rhs, params, initial, t0, exact).
     pub problem: PathBuf,
     /// euler, midpoint, heun, rk4, symplectic-euler, verlet, implicit-euler,
-    /// implicit-midpoint or dopri5.
+    /// implicit-midpoint, or an adaptive pair: dopri5, tsit5, vern6, vern7, vern8, vern9,
+    /// dop853.
     #[arg(long, default_value = "rk4")]
     pub method: Method,
     /// A custom explicit Runge–Kutta method as a Butcher tableau (RON); overrides --method.
     #[arg(long)]
     pub tableau: Option<PathBuf>,
-    /// Fixed step size (all methods but dopri5).
+    /// Fixed step size (the adaptive pairs take it as their first step).
     #[arg(long)]
     pub h: Option<f64>,
     /// Final time.
     #[arg(long)]
     pub t_end: f64,
-    /// Relative tolerance of dopri5.
+    /// Relative tolerance of the adaptive methods (> 10 machine epsilons).
     #[arg(long, default_value_t = 1e-6)]
     pub rtol: f64,
-    /// Absolute tolerance of dopri5.
+    /// Absolute tolerance of the adaptive methods (> 0).
     #[arg(long, default_value_t = 1e-9)]
     pub atol: f64,
     /// Print every step as CSV (header `t,<vars>`) instead of the final state.
@@ -81,7 +82,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         };
         (
             args.method.name().to_string(),
-            solve_adaptive(&problem, t0, &x0, args.t_end, opts),
+            solve_embedded(&problem, args.method, t0, &x0, args.t_end, opts),
         )
     } else if args.method.is_implicit() && args.h.is_none() {
         // no step given: implicit methods run with step-doubling error control

@@ -76,9 +76,12 @@ pub fn rk4_step<const N: usize, S: FixedSystem<N> + ?Sized>(
 pub struct FixedSolution<const N: usize> {
     pub t: f64,
     pub x: [f64; N],
-    /// evaluations of f: four per RK4 step
+    /// evaluations of f (four per RK4 step)
     pub f_evals: u64,
+    /// steps taken (accepted steps for adaptive runs)
     pub steps: usize,
+    /// rejected steps (adaptive runs only)
+    pub rejected: usize,
     pub outcome: Outcome,
 }
 
@@ -130,6 +133,7 @@ pub fn solve_fixed_n_with<const N: usize, S: FixedSystem<N> + ?Sized>(
         x: x0,
         f_evals: 0,
         steps: 0,
+        rejected: 0,
         outcome: Outcome::Finished,
     };
     let steps = match fixed_step_count(t0, t_end, h) {

@@ -4,7 +4,12 @@ use std::fmt;
 use std::str::FromStr;
 
 use super::Tableau;
+use super::pairs::{Pair, with_pair};
 use super::stability::{Complex, cdiv};
+
+fn propagating<const S: usize, P: Pair<S>>(_: P) -> Tableau {
+    P::COEF.tableau()
+}
 
 /// Every method by its CLI name. Explicit Runge–Kutta methods also exist as any
 /// [`Tableau`]; this enum names the built-in ones plus those that are not explicit RK.
@@ -19,10 +24,16 @@ pub enum Method {
     ImplicitEuler,
     ImplicitMidpoint,
     Dopri5,
+    Tsit5,
+    Vern6,
+    Vern7,
+    Vern8,
+    Vern9,
+    Dop853,
 }
 
 impl Method {
-    pub const ALL: [Method; 9] = [
+    pub const ALL: [Method; 15] = [
         Method::Euler,
         Method::Midpoint,
         Method::Heun,
@@ -32,10 +43,27 @@ impl Method {
         Method::ImplicitEuler,
         Method::ImplicitMidpoint,
         Method::Dopri5,
+        Method::Tsit5,
+        Method::Vern6,
+        Method::Vern7,
+        Method::Vern8,
+        Method::Vern9,
+        Method::Dop853,
+    ];
+
+    /// The adaptive embedded pairs, by order.
+    pub const PAIRS: [Method; 7] = [
+        Method::Dopri5,
+        Method::Tsit5,
+        Method::Vern6,
+        Method::Vern7,
+        Method::Vern8,
+        Method::Dop853,
+        Method::Vern9,
     ];
 
     /// The CLI name: `euler`, `midpoint`, `heun`, `rk4`, `symplectic-euler`, `verlet`,
-    /// `implicit-euler`, `implicit-midpoint`, `dopri5`.
+    /// `implicit-euler`, `implicit-midpoint`, `dopri5`, `tsit5`, `vern6` … `vern9`, `dop853`.
     pub fn name(self) -> &'static str {
         match self {
             Method::Euler => "euler",
@@ -47,6 +75,12 @@ impl Method {
             Method::ImplicitEuler => "implicit-euler",
             Method::ImplicitMidpoint => "implicit-midpoint",
             Method::Dopri5 => "dopri5",
+            Method::Tsit5 => "tsit5",
+            Method::Vern6 => "vern6",
+            Method::Vern7 => "vern7",
+            Method::Vern8 => "vern8",
+            Method::Vern9 => "vern9",
+            Method::Dop853 => "dop853",
         }
     }
 
@@ -62,6 +96,12 @@ impl Method {
             Method::ImplicitEuler => "Implicit Euler",
             Method::ImplicitMidpoint => "Implicit midpoint",
             Method::Dopri5 => "Dormand–Prince 5(4)",
+            Method::Tsit5 => "Tsitouras 5(4)",
+            Method::Vern6 => "Verner 6(5)",
+            Method::Vern7 => "Verner 7(6)",
+            Method::Vern8 => "Verner 8(7)",
+            Method::Vern9 => "Verner 9(8)",
+            Method::Dop853 => "Dormand–Prince 8(5,3)",
         }
     }
 
@@ -75,7 +115,11 @@ impl Method {
             Method::Euler | Method::SymplecticEuler | Method::ImplicitEuler => 1,
             Method::Midpoint | Method::Heun | Method::Verlet | Method::ImplicitMidpoint => 2,
             Method::Rk4 => 4,
-            Method::Dopri5 => 5,
+            Method::Dopri5 | Method::Tsit5 => 5,
+            Method::Vern6 => 6,
+            Method::Vern7 => 7,
+            Method::Vern8 | Method::Dop853 => 8,
+            Method::Vern9 => 9,
         }
     }
 
@@ -90,19 +134,18 @@ impl Method {
 
     /// Whether the method chooses its own step (rtol/atol) rather than taking a fixed h.
     pub fn is_adaptive(self) -> bool {
-        self == Method::Dopri5
+        Method::PAIRS.contains(&self)
     }
 
-    /// The Butcher tableau of an explicit Runge–Kutta method (for Dormand–Prince, the
-    /// fifth-order propagating weights), or `None`.
+    /// The Butcher tableau of an explicit Runge–Kutta method (for an embedded pair, its
+    /// propagating, higher-order formula), or `None`.
     pub fn tableau(self) -> Option<Tableau> {
         match self {
             Method::Euler => Some(Tableau::euler()),
             Method::Midpoint => Some(Tableau::midpoint()),
             Method::Heun => Some(Tableau::heun()),
             Method::Rk4 => Some(Tableau::rk4()),
-            Method::Dopri5 => Some(Tableau::dopri5()),
-            _ => None,
+            m => with_pair!(m, |p| Some(propagating(p)), None),
         }
     }
 

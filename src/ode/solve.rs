@@ -4,17 +4,16 @@
 
 use std::fmt;
 
-use super::dopri5::Dopri5;
 use super::explicit::Rk4;
 use super::implicit::Implicit;
 use super::symplectic::{SymplecticEuler, Verlet};
 use super::system::Counted;
 use super::{ExplicitRk, Method, System, Tableau};
 
+pub use super::adaptive::{Adaptive, MAX_ADAPTIVE_STEPS};
+
 /// More fixed steps than this are refused (a slider at h = 1e-12 must not hang a talk).
 pub const MAX_FIXED_STEPS: f64 = 1e8;
-/// Default step budget of the adaptive solver.
-pub const MAX_ADAPTIVE_STEPS: usize = 10_000_000;
 
 /// How a run ended.
 #[derive(Debug, Clone, PartialEq)]
@@ -57,7 +56,7 @@ pub struct Solution {
 }
 
 impl Solution {
-    fn start(n: usize, t0: f64, x0: &[f64]) -> Self {
+    pub(crate) fn start(n: usize, t0: f64, x0: &[f64]) -> Self {
         Self {
             n,
             ts: vec![t0],
@@ -91,7 +90,7 @@ impl Solution {
         self.outcome == Outcome::Finished
     }
 
-    fn push(&mut self, t: f64, x: &[f64], record: bool) {
+    pub(crate) fn push(&mut self, t: f64, x: &[f64], record: bool) {
         if record {
             self.ts.push(t);
             self.xs.extend_from_slice(x);
@@ -112,7 +111,7 @@ pub enum Stepper {
 }
 
 impl Stepper {
-    /// Dormand–Prince with a fixed step uses its fifth-order weights.
+    /// An embedded pair with a fixed step uses its propagating (higher-order) weights.
     pub fn new(method: Method, n: usize) -> Self {
         match method {
             Method::Rk4 => Stepper::Rk4(Rk4::new(n)),
@@ -151,41 +150,10 @@ fn out_of_bounds(x: &[f64], bound: f64) -> bool {
     x.iter().any(|v| !v.is_finite() || v.abs() > bound)
 }
 
-/// The argument checks both adaptive drivers share: dimension, tolerances, time span, and a
-/// start already out of bounds (reported as divergence at t0, like the fixed-step drivers).
-fn check_adaptive(
-    dim: usize,
-    t0: f64,
-    x0: &[f64],
-    t_end: f64,
-    opts: &Adaptive,
-) -> Result<(), Outcome> {
-    let fail = |reason: String| Err(Outcome::Failed { t: t0, reason });
-    let n = x0.len();
-    if n != dim {
-        return fail(format!("initial state has {n} values, the system {dim}"));
-    }
-    let (rtol, atol) = (opts.rtol, opts.atol);
-    if !(rtol >= 0.0 && atol >= 0.0 && rtol + atol > 0.0 && rtol.is_finite() && atol.is_finite()) {
-        return fail(format!(
-            "tolerances rtol = {rtol}, atol = {atol} must be finite, ≥ 0 and not both 0"
-        ));
-    }
-    if !(t0.is_finite() && t_end.is_finite() && t_end >= t0) {
-        return fail(format!(
-            "need finite t0 ≤ t_end, got t0 = {t0}, t_end = {t_end}"
-        ));
-    }
-    if out_of_bounds(x0, opts.bound) {
-        return Err(Outcome::Diverged { t: t0 });
-    }
-    Ok(())
-}
-
 /// Checks that a symplectic method gets a second-order system: even dimension and q' = v.
 fn check_second_order<S: System + ?Sized>(sys: &S, t0: f64, x0: &[f64]) -> Result<(), String> {
     let n = x0.len();
-    if n % 2 != 0 {
+    if !n.is_multiple_of(2) {
         return Err(format!(
             "symplectic methods need a state (q, v) of even length, got {n}"
         ));
@@ -354,192 +322,6 @@ fn run_fixed<S: System + ?Sized>(
             break;
         }
         sol.push(t_next, &x, record);
-    }
-    sol.f_evals = counted.evals.get();
-    sol
-}
-
-/// Tolerances and limits of an adaptive run.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Adaptive {
-    pub rtol: f64,
-    pub atol: f64,
-    /// first step; `None` picks one (Hairer's estimate, two f-evaluations)
-    pub h0: Option<f64>,
-    pub max_steps: usize,
-    pub bound: f64,
-    /// record every accepted step (else only the final state)
-    pub record: bool,
-}
-
-impl Default for Adaptive {
-    fn default() -> Self {
-        Self {
-            rtol: 1e-6,
-            atol: 1e-9,
-            h0: None,
-            max_steps: MAX_ADAPTIVE_STEPS,
-            bound: 1e12,
-            record: true,
-        }
-    }
-}
-
-/// Adaptive Dormand–Prince 5(4) from t0 to t_end.
-pub fn solve_adaptive<S: System + ?Sized>(
-    sys: &S,
-    t0: f64,
-    x0: &[f64],
-    t_end: f64,
-    opts: Adaptive,
-) -> Solution {
-    let n = x0.len();
-    let mut sol = Solution::start(n, t0, x0);
-    let fail = |mut sol: Solution, t: f64, reason: String| {
-        sol.outcome = Outcome::Failed { t, reason };
-        sol
-    };
-    if let Err(outcome) = check_adaptive(sys.dim(), t0, x0, t_end, &opts) {
-        sol.outcome = outcome;
-        return sol;
-    }
-    let counted = Counted::new(sys);
-    let mut dp = Dopri5::new(n, opts.rtol, opts.atol);
-    let mut x = x0.to_vec();
-    let mut t = t0;
-    let mut h = match opts.h0 {
-        Some(h) if h.is_finite() && h > 0.0 => h,
-        _ => dp.initial_step(&counted, t, &x, t_end),
-    };
-    let mut after_reject = false;
-    while t < t_end {
-        if sol.steps + sol.rejected >= opts.max_steps {
-            sol.f_evals = counted.evals.get();
-            return fail(sol, t, format!("more than {} steps", opts.max_steps));
-        }
-        let last = t + h >= t_end;
-        let h_try = if last { t_end - t } else { h };
-        if h_try <= f64::EPSILON * 4.0 * t.abs().max(1e-300) {
-            sol.f_evals = counted.evals.get();
-            return fail(sol, t, format!("step size underflow (h = {h_try:e})"));
-        }
-        let att = dp.try_step(&counted, t, &mut x, h_try, after_reject);
-        if att.accepted {
-            t = if last { t_end } else { t + h_try };
-            sol.steps += 1;
-            after_reject = false;
-            if out_of_bounds(&x, opts.bound) {
-                sol.push(t, &x, opts.record);
-                sol.outcome = Outcome::Diverged { t };
-                break;
-            }
-            sol.push(t, &x, opts.record);
-            // keep a good step size across the final, shortened step
-            h = if last { h.max(att.h_next) } else { att.h_next };
-        } else {
-            sol.rejected += 1;
-            after_reject = true;
-            h = att.h_next;
-            if !h.is_finite() {
-                sol.outcome = Outcome::Diverged { t };
-                break;
-            }
-        }
-    }
-    sol.f_evals = counted.evals.get();
-    sol
-}
-
-/// Implicit Euler or implicit midpoint with step-size control by step doubling: each step is
-/// taken once with h and twice with h/2; their difference / (2^p − 1) estimates the error
-/// of the two-half-step result, which is kept. This is what lets an implicit method cross the
-/// jumps of a stiff relaxation oscillation (Van der Pol) with few steps elsewhere.
-pub fn solve_implicit_adaptive<S: System + ?Sized>(
-    sys: &S,
-    method: Method,
-    t0: f64,
-    x0: &[f64],
-    t_end: f64,
-    opts: Adaptive,
-) -> Solution {
-    let n = x0.len();
-    let mut sol = Solution::start(n, t0, x0);
-    let fail = |mut sol: Solution, t: f64, reason: String| {
-        sol.outcome = Outcome::Failed { t, reason };
-        sol
-    };
-    if !method.is_implicit() {
-        return fail(sol, t0, format!("{method} is not an implicit method"));
-    }
-    if let Err(outcome) = check_adaptive(sys.dim(), t0, x0, t_end, &opts) {
-        sol.outcome = outcome;
-        return sol;
-    }
-    let counted = Counted::new(sys);
-    let mut stepper = Stepper::new(method, n);
-    let p = method.order() as i32;
-    let mut x = x0.to_vec();
-    let mut full = vec![0.0; n];
-    let mut half = vec![0.0; n];
-    let mut t = t0;
-    let mut h = opts
-        .h0
-        .filter(|h| h.is_finite() && *h > 0.0)
-        .unwrap_or(((t_end - t0) * 1e-4).max(1e-12));
-    while t < t_end {
-        if sol.steps + sol.rejected >= opts.max_steps {
-            sol.f_evals = counted.evals.get();
-            return fail(sol, t, format!("more than {} steps", opts.max_steps));
-        }
-        let last = t + h >= t_end;
-        let h_try = if last { t_end - t } else { h };
-        if h_try <= f64::EPSILON * 4.0 * t.abs().max(1e-300) {
-            sol.f_evals = counted.evals.get();
-            return fail(sol, t, format!("step size underflow (h = {h_try:e})"));
-        }
-        full.copy_from_slice(&x);
-        half.copy_from_slice(&x);
-        let ok = stepper.step(&counted, t, &mut full, h_try).is_ok()
-            && stepper.step(&counted, t, &mut half, 0.5 * h_try).is_ok()
-            && stepper
-                .step(&counted, t + 0.5 * h_try, &mut half, 0.5 * h_try)
-                .is_ok();
-        let err = if ok {
-            let k = (2f64.powi(p) - 1.0).recip();
-            let sum: f64 = (0..n)
-                .map(|i| {
-                    let sc = opts.atol + opts.rtol * x[i].abs().max(half[i].abs());
-                    ((half[i] - full[i]) * k / sc).powi(2)
-                })
-                .sum();
-            (sum / n as f64).sqrt()
-        } else {
-            f64::INFINITY
-        };
-        let fac = if err.is_finite() && err > 0.0 {
-            (0.9 * err.powf(-1.0 / (p as f64 + 1.0))).clamp(0.2, 4.0)
-        } else if err == 0.0 {
-            4.0
-        } else {
-            0.2
-        };
-        if err <= 1.0 {
-            x.copy_from_slice(&half);
-            t = if last { t_end } else { t + h_try };
-            sol.steps += 1;
-            if out_of_bounds(&x, opts.bound) {
-                if x.iter().all(|v| v.is_finite()) {
-                    sol.push(t, &x, opts.record);
-                }
-                sol.outcome = Outcome::Diverged { t };
-                break;
-            }
-            sol.push(t, &x, opts.record);
-            h = if last { h } else { h_try * fac };
-        } else {
-            sol.rejected += 1;
-            h = h_try * fac.min(0.9);
-        }
     }
     sol.f_evals = counted.evals.get();
     sol

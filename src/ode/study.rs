@@ -3,8 +3,9 @@
 
 use std::time::Instant;
 
+use super::adaptive::{Adaptive, solve_embedded};
 use super::fixed::{FixedSystem, solve_fixed_n};
-use super::solve::{Adaptive, Scheme, solve_adaptive, solve_fixed_final};
+use super::solve::{Scheme, solve_fixed_final};
 use super::{Method, System};
 
 /// Max-norm distance between two states (∞ when either is not finite).
@@ -74,16 +75,19 @@ pub fn convergence<S: System + ?Sized>(
     Convergence { points, slope }
 }
 
-/// A very accurate final state (Dormand–Prince at rtol 1e-13) for problems without an
-/// exact solution.
+/// A very accurate final state (Verner 9(8) at rtol 1e-14) for problems without an exact
+/// solution.
 pub fn reference<S: System + ?Sized>(sys: &S, t0: f64, x0: &[f64], t_end: f64) -> Vec<f64> {
     let opts = Adaptive {
-        rtol: 1e-13,
-        atol: 1e-15,
+        rtol: 1e-14,
+        atol: 1e-16,
         record: false,
         ..Adaptive::default()
     };
-    solve_adaptive(sys, t0, x0, t_end, opts).last().1.to_vec()
+    solve_embedded(sys, Method::Vern9, t0, x0, t_end, opts)
+        .last()
+        .1
+        .to_vec()
 }
 
 /// One run of a work-precision diagram.
@@ -98,7 +102,7 @@ pub struct Point {
     pub secs: f64,
 }
 
-/// What to sweep: fixed-step methods over `hs`, Dormand–Prince over `tols`.
+/// What to sweep: fixed-step methods over `hs`, adaptive pairs over `tols`.
 #[derive(Debug, Clone)]
 pub struct Sweep {
     pub methods: Vec<Method>,
@@ -134,7 +138,7 @@ pub fn work_precision<S: System + ?Sized>(
                         record: false,
                         ..Adaptive::default()
                     };
-                    solve_adaptive(sys, t0, x0, t_end, opts)
+                    solve_embedded(sys, m, t0, x0, t_end, opts)
                 } else {
                     solve_fixed_final(sys, Scheme::Method(m), t0, x0, p, t_end, f64::INFINITY)
                 }

@@ -70,20 +70,11 @@ impl Tableau {
 
 impl Tableau {
     /// Dormand–Prince 5(4): the six stages and fifth-order weights that propagate the solution
-    /// (the seventh, FSAL stage only feeds the error estimate; see `dopri5.rs`).
+    /// (the seventh, FSAL stage only feeds the error estimate; see `pairs/dopri5.rs`).
     pub fn dopri5() -> Self {
-        let a = DP_A;
-        let mut rows = Vec::new();
-        for i in 0..6 {
-            let mut row = vec![0.0; 6];
-            row[..6].copy_from_slice(&a[i][..6]);
-            rows.push(row);
-        }
         Self {
             name: "Dormand–Prince 5".into(),
-            a: rows,
-            b: DP_B[..6].to_vec(),
-            c: DP_C[..6].to_vec(),
+            ..super::pairs::dopri5::DOPRI5.tableau()
         }
     }
 
@@ -169,8 +160,9 @@ impl Tableau {
         Ok(())
     }
 
-    /// Residuals of the order conditions (Butcher trees up to order 4), each with its name.
-    /// A method has order p when every condition of order ≤ p holds (and c is the row sum of a).
+    /// Residuals of the order conditions up to order 4, each with its name (for display; see
+    /// [`Tableau::order`] for any order). A method has order p when every condition of order
+    /// ≤ p holds (and c is the row sum of a).
     pub fn order_conditions(&self) -> Vec<OrderCondition> {
         let s = self.stages();
         let (a, b, c) = (&self.a, &self.b, &self.c);
@@ -211,22 +203,11 @@ impl Tableau {
             .all(|(row, &c)| (row.iter().sum::<f64>() - c).abs() < 1e-12)
     }
 
-    /// The highest order p ≤ 4 whose conditions (and all lower ones) hold to 1e-12.
+    /// The highest order p ≤ 10 whose conditions (all rooted trees with up to p nodes, see
+    /// [`super::trees`]) hold to 1e-12 relative to the size of their terms.
     pub fn order(&self) -> u32 {
-        let conds = self.order_conditions();
-        let mut p = 0;
-        for order in 1..=4 {
-            if conds
-                .iter()
-                .filter(|c| c.order == order)
-                .all(|c| c.residual.abs() < 1e-12)
-            {
-                p = order;
-            } else {
-                break;
-            }
-        }
-        p
+        let residuals = super::trees::order_residuals(self, 10);
+        residuals.iter().take_while(|&&r| r < 1e-12).count() as u32
     }
 }
 
@@ -249,8 +230,7 @@ mod tests {
         assert_eq!(Tableau::heun().order(), 2);
         assert_eq!(Tableau::ralston().order(), 2);
         assert_eq!(Tableau::rk4().order(), 4);
-        // our checks stop at order 4
-        assert_eq!(Tableau::dopri5().order(), 4);
+        assert_eq!(Tableau::dopri5().order(), 5);
         assert!(Tableau::dopri5().row_sums_consistent());
         // the typo breaks Σ b c = 1/2: first order only
         assert_eq!(Tableau::rk4_typo().order(), 1);
@@ -278,59 +258,3 @@ mod tests {
         assert_eq!(d.line, 2, "{d}");
     }
 }
-
-/// Dormand–Prince 5(4) coefficients (Dormand & Prince 1980; Hairer, Nørsett & Wanner I, II.5).
-pub(crate) const DP_C: [f64; 7] = [0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0, 1.0];
-pub(crate) const DP_A: [[f64; 7]; 7] = [
-    [0.0; 7],
-    [1.0 / 5.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
-    [3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0, 0.0],
-    [44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0, 0.0, 0.0, 0.0, 0.0],
-    [
-        19372.0 / 6561.0,
-        -25360.0 / 2187.0,
-        64448.0 / 6561.0,
-        -212.0 / 729.0,
-        0.0,
-        0.0,
-        0.0,
-    ],
-    [
-        9017.0 / 3168.0,
-        -355.0 / 33.0,
-        46732.0 / 5247.0,
-        49.0 / 176.0,
-        -5103.0 / 18656.0,
-        0.0,
-        0.0,
-    ],
-    [
-        35.0 / 384.0,
-        0.0,
-        500.0 / 1113.0,
-        125.0 / 192.0,
-        -2187.0 / 6784.0,
-        11.0 / 84.0,
-        0.0,
-    ],
-];
-/// Fifth-order weights (equal to the last row of `DP_A`: first same as last).
-pub(crate) const DP_B: [f64; 7] = [
-    35.0 / 384.0,
-    0.0,
-    500.0 / 1113.0,
-    125.0 / 192.0,
-    -2187.0 / 6784.0,
-    11.0 / 84.0,
-    0.0,
-];
-/// Fifth- minus fourth-order weights: the local error estimate.
-pub(crate) const DP_E: [f64; 7] = [
-    71.0 / 57600.0,
-    0.0,
-    -71.0 / 16695.0,
-    71.0 / 1920.0,
-    -17253.0 / 339200.0,
-    22.0 / 525.0,
-    -1.0 / 40.0,
-];

@@ -14,9 +14,9 @@
 //! Euler, which shares [`free_rotation::drift`]); only ω is computed without the square root:
 //! `R(q̂) = M(q) / |q|²` with `M` the homogeneous quadratic form, so one division per stage.
 
-use super::body::{BodyConstants, Integrator, RigidState};
 use super::free_rotation;
 use super::lanes::{F4, Real};
+use super::state::{BodyConstants, Integrator, RigidState};
 
 /// Four bodies' states, component-major in [`RigidState::to_array`] order.
 pub type State4 = [F4; 13];

@@ -1,9 +1,9 @@
 //! The forces of the water scene: gravity, buoyancy from sample points against the Gerstner
 //! surface (the same [`WaveSum`] the water shader draws), and linear and angular drag in water.
 
-use super::body::{BodyConstants, Forces, RigidState, Wrench};
 use super::mass::{MassProperties, lattice_points};
 use super::mesh::TriMesh;
+use super::state::{BodyConstants, Forces, RigidState, Wrench};
 use crate::waves::WaveSum;
 use glam::DVec3;
 

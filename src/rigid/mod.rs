@@ -12,14 +12,13 @@ pub mod lanes;
 pub mod mass;
 pub mod mesh;
 pub mod principal;
+pub mod state;
 pub mod step;
 
 pub use batch::{BatchForces, BodyBatch, FreeBodies};
-pub use body::{
-    BodyConstants, BodySystem, Forces, Integrator, NoForces, RigidBody, RigidState, Wrench,
-    quat_euler_update,
-};
+pub use body::{BodySystem, RigidBody, quat_euler_update};
 pub use forces::{BuoyancySamples, Gravity, WaterForces};
 pub use mass::{MassProperties, mirtich, point_lattice};
 pub use mesh::TriMesh;
 pub use principal::{PrincipalAxes, principal_axes};
+pub use state::{BodyConstants, Forces, Integrator, NoForces, RigidState, Wrench};

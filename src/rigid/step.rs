@@ -6,8 +6,8 @@
 //! expression (`x + (h a) k` per stage, `x += (h b) k` per weight, zero entries skipped), so
 //! results are bit-identical to it (tested).
 
-use super::body::{BodyConstants, Forces, Integrator, RigidState};
 use super::free_rotation;
+use super::state::{BodyConstants, Forces, Integrator, RigidState};
 use glam::DQuat;
 
 /// `Ẋ = (P/M, ½ ω q, F, τ)` with `ω = R I_body⁻¹ Rᵀ L` (ERRATA 2, 4).

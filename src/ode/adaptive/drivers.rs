@@ -1,0 +1,189 @@
+//! The public adaptive drivers: any embedded pair on a `System` (recording a `Solution`) or on
+//! a fixed-size system (the fast path, final state and a per-step callback), and step doubling
+//! for the implicit methods. All of them run [`drive`].
+
+use super::doubling::Doubling;
+use super::pair_stepper::{Fast, PairStepper, Slices};
+use super::{Adaptive, Run, Trial, check, drive};
+use crate::ode::fixed::{FixedSolution, FixedSystem};
+use crate::ode::pairs::{Controller, Pair, with_pair};
+use crate::ode::solve::{Outcome, Solution};
+use crate::ode::{Method, System};
+
+/// Adaptive Dormand–Prince 5(4) from t0 to t_end (the default pair; see [`solve_embedded`]).
+pub fn solve_adaptive<S: System + ?Sized>(
+    sys: &S,
+    t0: f64,
+    x0: &[f64],
+    t_end: f64,
+    opts: Adaptive,
+) -> Solution {
+    solve_embedded(sys, Method::Dopri5, t0, x0, t_end, opts)
+}
+
+/// Integrates from t0 to t_end with an adaptive embedded pair (`dopri5`, `tsit5`, `vern6` …
+/// `vern9`, `dop853`): f-evaluations, accepted and rejected steps are counted in the
+/// solution; bad tolerances, a non-finite f and a step-size underflow end in `Failed`, a state
+/// beyond `opts.bound` in `Diverged`, and `opts.max_steps` bounds the work.
+pub fn solve_embedded<S: System + ?Sized>(
+    sys: &S,
+    method: Method,
+    t0: f64,
+    x0: &[f64],
+    t_end: f64,
+    opts: Adaptive,
+) -> Solution {
+    let mut sol = Solution::start(x0.len(), t0, x0);
+    if let Err(outcome) = check(sys.dim(), t0, x0, t_end, &opts) {
+        sol.outcome = outcome;
+        return sol;
+    }
+    with_pair!(
+        method,
+        |pair| {
+            let mut trial = PairStepper::new(pair, Slices(sys), x0.to_vec());
+            recorded(&mut trial, t0, t_end, &opts, control_of(pair), sol)
+        },
+        {
+            sol.outcome = not_a_pair(t0, method);
+            sol
+        }
+    )
+}
+
+fn control_of<const S: usize, P: Pair<S>>(_: P) -> Controller {
+    P::CONTROL
+}
+
+fn not_a_pair(t: f64, method: Method) -> Outcome {
+    Outcome::Failed {
+        t,
+        reason: format!("{method} is not an adaptive embedded pair"),
+    }
+}
+
+/// Runs the loop, recording into `sol` (every accepted step, or only the last).
+fn recorded<T: Trial>(
+    trial: &mut T,
+    t0: f64,
+    t_end: f64,
+    opts: &Adaptive,
+    ctrl: Controller,
+    mut sol: Solution,
+) -> Solution {
+    let record = opts.record;
+    let run = drive(trial, t0, t_end, opts, ctrl, |t, x| sol.push(t, x, record));
+    sol.f_evals = trial.f_evals();
+    sol.steps = run.steps;
+    sol.rejected = run.rejected;
+    sol.outcome = run.outcome;
+    sol
+}
+
+/// [`solve_embedded`] on the fixed-size fast path: state `[f64; N]`, f inlined, nothing
+/// recorded (`opts.record` is ignored); the final state and the work come back.
+pub fn solve_embedded_n<const N: usize, S: FixedSystem<N> + ?Sized>(
+    sys: &S,
+    method: Method,
+    t0: f64,
+    x0: [f64; N],
+    t_end: f64,
+    opts: Adaptive,
+) -> FixedSolution<N> {
+    solve_embedded_n_with(sys, method, t0, x0, t_end, opts, |_, _| {})
+}
+
+/// [`solve_embedded_n`] calling `on_step(t, &x)` after every accepted step; a no-op closure
+/// compiles away.
+pub fn solve_embedded_n_with<const N: usize, S: FixedSystem<N> + ?Sized>(
+    sys: &S,
+    method: Method,
+    t0: f64,
+    x0: [f64; N],
+    t_end: f64,
+    opts: Adaptive,
+    mut on_step: impl FnMut(f64, &[f64; N]),
+) -> FixedSolution<N> {
+    let mut sol = FixedSolution {
+        t: t0,
+        x: x0,
+        f_evals: 0,
+        steps: 0,
+        rejected: 0,
+        outcome: Outcome::Finished,
+    };
+    if let Err(outcome) = check(N, t0, &x0, t_end, &opts) {
+        sol.outcome = outcome;
+        return sol;
+    }
+    with_pair!(
+        method,
+        |pair| {
+            let mut trial = PairStepper::new(pair, Fast(sys), x0);
+            let run = drive(&mut trial, t0, t_end, &opts, control_of(pair), |t, x| {
+                on_step(t, as_array(x))
+            });
+            finish_fixed(&trial, run, sol)
+        },
+        {
+            sol.outcome = not_a_pair(t0, method);
+            sol
+        }
+    )
+}
+
+#[inline(always)]
+fn as_array<const N: usize>(x: &[f64]) -> &[f64; N] {
+    x.try_into().expect("a state of N values")
+}
+
+fn finish_fixed<const N: usize, T: Trial>(
+    trial: &T,
+    run: Run,
+    mut sol: FixedSolution<N>,
+) -> FixedSolution<N> {
+    sol.t = run.t;
+    sol.x = *as_array(if run.ended_on_candidate {
+        trial.candidate()
+    } else {
+        trial.state()
+    });
+    sol.f_evals = trial.f_evals();
+    sol.steps = run.steps;
+    sol.rejected = run.rejected;
+    sol.outcome = run.outcome;
+    sol
+}
+
+/// Implicit Euler or implicit midpoint with step-size control by step doubling (see
+/// `adaptive::doubling`).
+pub fn solve_implicit_adaptive<S: System + ?Sized>(
+    sys: &S,
+    method: Method,
+    t0: f64,
+    x0: &[f64],
+    t_end: f64,
+    opts: Adaptive,
+) -> Solution {
+    let mut sol = Solution::start(x0.len(), t0, x0);
+    if !method.is_implicit() {
+        sol.outcome = Outcome::Failed {
+            t: t0,
+            reason: format!("{method} is not an implicit method"),
+        };
+        return sol;
+    }
+    if let Err(outcome) = check(sys.dim(), t0, x0, t_end, &opts) {
+        sol.outcome = outcome;
+        return sol;
+    }
+    let mut trial = Doubling::new(sys, method, x0);
+    recorded(
+        &mut trial,
+        t0,
+        t_end,
+        &opts,
+        Doubling::<S>::controller(method),
+        sol,
+    )
+}
