@@ -171,9 +171,11 @@ fn check_reports_a_heavy_formula_and_an_outside_image_at_their_positions() {
     assert!(within_budget(took), "check took {took:?}");
     let shown = path.display();
     for (needle, what) in [
-        ("#range", "formula stopped after 2 s"),
-        ("../../", "leads outside the project folder"),
-        ("undefinedthing", "unknown variable"),
+        // Which bound stops the heavy formula first depends on the machine's speed: a fast
+        // one fills 512 MB before 2 s pass. Either way it is stopped and reported in place.
+        ("#range", &["formula stopped after 2 s", "more than 512 MB"][..]),
+        ("../../", &["leads outside the project folder"][..]),
+        ("undefinedthing", &["unknown variable"][..]),
     ] {
         let byte = deck.find(needle).unwrap();
         let line = deck[..byte].matches('\n').count() + 1;
@@ -182,8 +184,8 @@ fn check_reports_a_heavy_formula_and_an_outside_image_at_their_positions() {
         assert!(
             stdout
                 .lines()
-                .any(|l| l.starts_with(&want) && l.contains(what)),
-            "no {want}…{what} in\n{stdout}"
+                .any(|l| l.starts_with(&want) && what.iter().any(|w| l.contains(w))),
+            "no {want}…{what:?} in\n{stdout}"
         );
     }
 }
