@@ -156,6 +156,7 @@ fn measure(ui: &egui::Ui, block: &Block, width: f32, bctx: &BlockCtx) -> Option<
         }
         Block::Math { src, latex } => Some(
             formula(ui, bctx, &[], src, *latex)
+                .0
                 .map_or_else(|| math_source_height(src, look), |f| f.size(ui, width).y),
         ),
         Block::Image { path, width: w } => {
@@ -214,7 +215,11 @@ fn block_ui(
                     .layout(egui::Layout::top_down(Align::Min)),
             );
             child.set_clip_rect(rect.intersect(ui.clip_rect()));
-            state.widget(path, spec, bctx.base_dir).ui(&mut child);
+            let widget = state.widget(path, spec, bctx.base_dir);
+            widget.ui(&mut child);
+            for problem in widget.problems() {
+                state.note_problem(format!("{} widget {path:?}: {problem}", spec.kind()));
+            }
         }
         Block::Columns(cols) => {
             let n = cols.len().max(1) as f32;
@@ -356,7 +361,6 @@ pub(crate) fn inline_spans(text: &str) -> Vec<(&str, Inline)> {
 struct Typeset {
     texture: egui::TextureId,
     size_px: egui::Vec2,
-    error: Option<String>,
 }
 
 impl Typeset {
@@ -372,14 +376,15 @@ impl Typeset {
 }
 
 /// The formula for `src` from the shared cache (typeset on first use), or its last good
-/// rendering if the current source is broken; `None` if it never rendered.
+/// rendering if the current source is broken (`None` if it never rendered); and the error of
+/// the current source, if any.
 fn formula(
     ui: &egui::Ui,
     bctx: &BlockCtx,
     path: &[usize],
     src: &str,
     latex: bool,
-) -> Option<Typeset> {
+) -> (Option<Typeset>, Option<String>) {
     use crate::math::{MathCache, MathSyntax};
     let ctx = ui.ctx();
     let syntax = if latex {
@@ -390,16 +395,16 @@ fn formula(
     let em_px = bctx.look.scaled(size::MATH) * ctx.pixels_per_point();
     let slot = format!("{}/{path:?}", bctx.slide_key);
     let cache = MathCache::shared(ctx);
-    let view = cache
-        .lock()
-        .ok()?
-        .get_slot(ctx, &slot, src, syntax, em_px, bctx.look.palette.title);
+    let Ok(mut cache) = cache.lock() else {
+        return (None, Some("the formula cache is poisoned".into()));
+    };
+    let view = cache.get_slot(ctx, &slot, src, syntax, em_px, bctx.look.palette.title);
     let error = view.error.map(|e| e.to_string());
-    view.formula.map(|f| Typeset {
+    let typeset = view.formula.map(|f| Typeset {
         texture: f.texture.id(),
         size_px: f.size_px,
-        error,
-    })
+    });
+    (typeset, error)
 }
 
 fn math_source_height(src: &str, look: &Look) -> f32 {
@@ -420,7 +425,8 @@ fn math_ui(
 ) {
     let look = &bctx.look;
     let width = ui.available_width();
-    if let Some(f) = formula(ui, bctx, path, src, latex) {
+    let (typeset, error) = formula(ui, bctx, path, src, latex);
+    if let Some(f) = typeset {
         let size = f.size(ui, width);
         let (row, _) = ui.allocate_exact_size(vec2(width, size.y), Sense::hover());
         let rect = Rect::from_center_size(row.center(), size);
@@ -430,7 +436,7 @@ fn math_ui(
             Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0)),
             egui::Color32::WHITE,
         );
-        if let Some(e) = f.error {
+        if let Some(e) = error {
             state.note_problem(format!("formula {path:?}: {e}"));
         }
         return;
@@ -461,7 +467,8 @@ fn math_ui(
         galley,
         look.palette.title,
     );
-    state.note_problem(format!("formula {path:?} did not typeset: {src}"));
+    let why = error.unwrap_or_else(|| "unknown error".into());
+    state.note_problem(format!("formula {path:?} did not typeset: {why}"));
 }
 
 #[cfg(test)]

@@ -3,6 +3,7 @@
 pub mod bench;
 pub mod check;
 pub mod export;
+pub mod export_pdf;
 pub mod inertia;
 pub mod present;
 pub mod render_scene;

@@ -72,6 +72,11 @@ pub trait SlideWidget: Send {
     fn reset(&mut self);
     /// The current values as a spec, to write back to the deck file.
     fn spec(&self) -> WidgetSpec;
+    /// What went wrong making this widget (a file it names that is missing or broken), for
+    /// the presenter's screen and `lectern export`'s exit status. Nothing by default.
+    fn problems(&self) -> Vec<String> {
+        Vec::new()
+    }
 }
 
 impl WidgetSpec {

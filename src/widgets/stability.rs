@@ -257,6 +257,12 @@ fn marching_squares(vals: &[f64], at: impl Fn(usize, usize) -> C) -> Vec<[[f64; 
 }
 
 impl SlideWidget for Stability {
+    fn problems(&self) -> Vec<String> {
+        self.loaded
+            .iter()
+            .filter_map(|t| t.as_ref().err().cloned())
+            .collect()
+    }
     fn ui(&mut self, ui: &mut egui::Ui) {
         style::projector_text(ui);
         let ink = style::ink(ui);
