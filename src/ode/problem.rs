@@ -22,6 +22,7 @@ use serde::Deserialize;
 use super::System;
 use super::expr::{self, Program};
 use crate::diag::Diagnostic;
+use crate::ron_tree;
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -68,71 +69,110 @@ impl Problem {
             return Err(Diagnostic::whole_file(path, "problem file is empty"));
         }
         let f: ProblemFile = ron::from_str(text).map_err(|e| Diagnostic::from_ron(path, &e))?;
-        let whole = |m: String| Diagnostic::whole_file(path, m);
+        // Errors found past serde point at the value at fault, found again in the syntax tree.
+        let tree = ron_tree::parse(text).ok();
+        let at = |value: &str, m: String| Diagnostic::at_value(tree.as_ref(), text, path, value, m);
         let n = f.vars.len();
         if n == 0 {
-            return Err(whole(
+            return Err(at(
+                "vars",
                 "`vars` is empty: a problem needs at least one variable".into(),
             ));
         }
         if f.rhs.len() != n {
-            return Err(whole(format!(
-                "`rhs` has {} expressions but `vars` names {n} variables",
-                f.rhs.len()
-            )));
+            return Err(at(
+                "rhs",
+                format!(
+                    "`rhs` has {} expressions but `vars` names {n} variables",
+                    f.rhs.len()
+                ),
+            ));
         }
         if f.initial.len() != n {
-            return Err(whole(format!(
-                "`initial` has {} values but `vars` names {n} variables",
-                f.initial.len()
-            )));
+            return Err(at(
+                "initial",
+                format!(
+                    "`initial` has {} values but `vars` names {n} variables",
+                    f.initial.len()
+                ),
+            ));
         }
         if let Some(ex) = &f.exact
             && ex.len() != n
         {
-            return Err(whole(format!(
-                "`exact` has {} expressions but `vars` names {n} variables",
-                ex.len()
-            )));
+            return Err(at(
+                "exact",
+                format!(
+                    "`exact` has {} expressions but `vars` names {n} variables",
+                    ex.len()
+                ),
+            ));
         }
+        // A bad name sits in `vars[i]` or is a key of `params`.
+        let name_at = |i: usize, name: &str, m: String| {
+            if i < n {
+                return at(&format!("vars[{i}]"), m);
+            }
+            let key = tree
+                .as_ref()
+                .and_then(|t| t.field("params"))
+                .and_then(|p| match &p.value {
+                    ron_tree::Value::Map(entries) => entries
+                        .iter()
+                        .find(|(k, _)| k.as_str() == Some(name))
+                        .map(|(k, _)| k.span.start),
+                    _ => None,
+                });
+            match key {
+                Some(offset) => Diagnostic::at_offset(text, path, offset, m),
+                None => at("params", m),
+            }
+        };
         let mut names: Vec<&str> = vec!["t"];
-        for name in f.vars.iter().chain(f.params.keys()) {
+        for (i, name) in f.vars.iter().chain(f.params.keys()).enumerate() {
             let ok = name
                 .chars()
                 .next()
                 .is_some_and(|c| c.is_alphabetic() || c == '_')
                 && name.chars().all(|c| c.is_alphanumeric() || c == '_');
             if !ok {
-                return Err(whole(format!(
-                    "`{name}` is not a valid name (letters, digits, _)"
-                )));
+                return Err(name_at(
+                    i,
+                    name,
+                    format!("`{name}` is not a valid name (letters, digits, _)"),
+                ));
             }
             if expr::is_reserved(name) {
-                return Err(whole(format!(
-                    "`{name}` names a function or constant and cannot be a variable or parameter"
-                )));
+                return Err(name_at(
+                    i,
+                    name,
+                    format!(
+                        "`{name}` names a function or constant and cannot be a variable or parameter"
+                    ),
+                ));
             }
             if names.contains(&name.as_str()) {
-                return Err(whole(format!(
-                    "the name `{name}` is used twice (variables, parameters and t share one namespace)"
-                )));
+                return Err(name_at(
+                    i,
+                    name,
+                    format!(
+                        "the name `{name}` is used twice (variables, parameters and t share one namespace)"
+                    ),
+                ));
             }
             names.push(name);
         }
         if !f.t0.is_finite() {
-            return Err(whole(format!("t0 = {} must be finite", f.t0)));
+            return Err(at("t0", format!("t0 = {} must be finite", f.t0)));
         }
         let params: Vec<(String, f64)> = f.params.into_iter().collect();
         let locate = |field: &str, i: usize, e: &expr::ExprError| {
-            let (line, col) = string_position(text, field, i)
-                .map(|(l, c)| (l, c + e.offset))
-                .unwrap_or((0, 0));
-            Diagnostic::new(
-                path,
-                line,
-                col,
-                format!("in {field}[{i}]: {}: `{}`", e.message, e.token),
-            )
+            let message = format!("in {field}[{i}]: {}: `{}`", e.message, e.token);
+            let node = tree.as_ref().and_then(|t| t.at(&format!("{field}[{i}]")));
+            match node.and_then(|s| s.str_offset(text, e.offset)) {
+                Some(offset) => Diagnostic::at_offset(text, path, offset, message),
+                None => Diagnostic::whole_file(path, message),
+            }
         };
         let rhs = expr::compile(&f.rhs, &f.vars, &params).map_err(|(i, e)| locate("rhs", i, &e))?;
         let exact = match &f.exact {
@@ -202,98 +242,6 @@ impl System for Problem {
     }
 }
 
-/// 1-based (line, column) of the first character inside the quotes of the `index`-th string
-/// literal in the list after the top-level key `field` (also inside `Some([...])`).
-fn string_position(text: &str, field: &str, index: usize) -> Option<(usize, usize)> {
-    let chars: Vec<char> = text.chars().collect();
-    let fc: Vec<char> = field.chars().collect();
-    let mut i = 0;
-    let mut depth = 0i32;
-    // find `field` as a whole word at depth 1, followed by `:`
-    let start = loop {
-        if i >= chars.len() {
-            return None;
-        }
-        match chars[i] {
-            '"' => i = skip_string(&chars, i),
-            '/' if chars.get(i + 1) == Some(&'/') => {
-                while i < chars.len() && chars[i] != '\n' {
-                    i += 1;
-                }
-            }
-            '(' | '[' | '{' => {
-                depth += 1;
-                i += 1;
-            }
-            ')' | ']' | '}' => {
-                depth -= 1;
-                i += 1;
-            }
-            _ if depth == 1
-                && chars[i..].starts_with(&fc)
-                && (i == 0 || !(chars[i - 1].is_alphanumeric() || chars[i - 1] == '_'))
-                && chars[i + fc.len()..].iter().find(|c| !c.is_whitespace()) == Some(&':') =>
-            {
-                break i + fc.len();
-            }
-            _ => i += 1,
-        }
-    };
-    let mut count = 0;
-    let mut j = start;
-    let mut d = 0i32;
-    while j < chars.len() {
-        match chars[j] {
-            '"' => {
-                if count == index {
-                    let (line, col) = line_col(&chars, j + 1);
-                    return Some((line, col));
-                }
-                count += 1;
-                j = skip_string(&chars, j);
-                continue;
-            }
-            '(' | '[' | '{' => d += 1,
-            ')' | ']' | '}' => {
-                d -= 1;
-                if d <= 0 {
-                    return None;
-                }
-            }
-            ',' if d == 0 => return None,
-            _ => {}
-        }
-        j += 1;
-    }
-    None
-}
-
-/// Index just past the string literal opening at `i`.
-fn skip_string(chars: &[char], mut i: usize) -> usize {
-    i += 1;
-    while i < chars.len() && chars[i] != '"' {
-        if chars[i] == '\\' {
-            i += 1;
-        }
-        i += 1;
-    }
-    i + 1
-}
-
-fn line_col(chars: &[char], at: usize) -> (usize, usize) {
-    let mut line = 1;
-    let mut col = 1;
-    for &c in &chars[..at] {
-        if c == '\n' {
-            line += 1;
-            col = 1;
-        } else {
-            col += 1;
-        }
-    }
-    (line, col)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -347,5 +295,27 @@ mod tests {
         assert!(d.message.contains("empty"));
         let d = Problem::parse(&OSC.replace("\"v\"]", "\"x\"]"), "p.ron").unwrap_err();
         assert!(d.message.contains("twice"), "{d}");
+    }
+
+    #[test]
+    fn semantic_errors_point_at_the_value() {
+        let at = |text: String| {
+            let d = Problem::parse(&text, "p.ron").unwrap_err();
+            (d.line, d.col)
+        };
+        // `vars: ["x", "v"]` on line 3: the second name is at column 17
+        assert_eq!(at(OSC.replace("\"v\"]", "\"x\"]")), (3, 17));
+        assert_eq!(
+            at(OSC.replace("[\"x\", \"v\"]", "[\"x\", \"2v\"]")),
+            (3, 17)
+        );
+        // the params key `"sin"` on line 5, column 14
+        assert_eq!(at(OSC.replace("\"w\":", "\"sin\":")), (5, 14));
+        assert_eq!(at(OSC.replace("[1.0, 0.0]", "[1.0]")), (6, 14));
+        assert_eq!(at(OSC.replace("t0: 0.0", "t0: NaN")), (7, 9));
+        assert_eq!(
+            at(OSC.replace("rhs: [\"v\", \"-w*w*x\"]", "rhs: [\"v\"]")),
+            (4, 10)
+        );
     }
 }
