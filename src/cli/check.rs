@@ -3,7 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::deck::load_deck;
+use super::check_deck::DeckChecker;
 use crate::diag::Diagnostic;
 
 /// Validate decks, scenes, shaders and problems.
@@ -84,6 +84,7 @@ pub fn minutes(secs: f32) -> String {
 /// Missing default folders are skipped; a missing path the user named is a problem.
 pub fn check_paths(paths: &[PathBuf], defaults: bool) -> Report {
     let mut report = Report::default();
+    let mut decks = DeckChecker::new();
     for path in paths {
         if !path.exists() {
             if !defaults {
@@ -102,7 +103,7 @@ pub fn check_paths(paths: &[PathBuf], defaults: bool) -> Report {
             ));
         }
         for file in files {
-            check_file(&file, &mut report);
+            check_file(&file, &mut decks, &mut report);
         }
     }
     report
@@ -131,22 +132,24 @@ fn collect_files(path: &Path, out: &mut Vec<PathBuf>) {
     }
 }
 
-fn check_file(file: &Path, report: &mut Report) {
+/// Checks one file by its kind, adding its problems (and, for a deck, its line) to `report`.
+pub fn check_file(file: &Path, decks: &mut DeckChecker, report: &mut Report) {
     let Some(kind) = Kind::of(file) else { return };
     report.counts[kind as usize] += 1;
     let result: Result<(), Vec<Diagnostic>> = match kind {
-        Kind::Deck => match load_deck(file) {
-            Ok(deck) => {
+        Kind::Deck => {
+            let checked = decks.check_file(file);
+            if let Some(deck) = &checked.deck {
+                let n = deck.slides.len();
                 report.deck_lines.push(format!(
-                    "{}: {} slides, {} planned",
+                    "{}: {n} slide{}, {} planned",
                     file.display(),
-                    deck.slides.len(),
+                    if n == 1 { "" } else { "s" },
                     minutes(deck.planned_secs())
                 ));
-                Ok(())
             }
-            Err(d) => Err(vec![d]),
-        },
+            as_result(checked.problems)
+        }
         Kind::Scene => as_result(crate::scene::check_file(file)),
         Kind::Shader => as_result(crate::render::shaders::check_file(file)),
         Kind::Problem => crate::ode::problem::Problem::load(file)

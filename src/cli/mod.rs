@@ -2,6 +2,7 @@
 
 pub mod bench;
 pub mod check;
+pub mod check_deck;
 pub mod export;
 pub mod export_pdf;
 pub mod inertia;

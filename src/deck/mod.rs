@@ -8,6 +8,6 @@ mod session;
 pub mod write_back;
 
 pub use load::{load_deck, parse_deck, parse_deck_file};
-pub use model::{Aspect, Block, BookmarkDecl, Deck, Layout, Slide, Theme};
+pub use model::{Aspect, Block, BookmarkDecl, Deck, IMAGE_WIDTH_RANGE, Layout, Slide, Theme};
 pub use nav::Nav;
 pub use session::DeckSession;
