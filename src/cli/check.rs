@@ -136,9 +136,30 @@ fn collect_files(path: &Path, out: &mut Vec<PathBuf>) {
 pub fn check_file(file: &Path, decks: &mut DeckChecker, report: &mut Report) {
     let Some(kind) = Kind::of(file) else { return };
     report.counts[kind as usize] += 1;
-    let result: Result<(), Vec<Diagnostic>> = match kind {
+    let problems = match kind {
+        // a shader is read with its includes
+        Kind::Shader => crate::render::shaders::check_file(file),
+        _ => match std::fs::read_to_string(file) {
+            Ok(text) => check_text(kind, &text, file, decks, report),
+            Err(e) => vec![Diagnostic::whole_file(file, format!("cannot read: {e}"))],
+        },
+    };
+    report.problems.extend(problems);
+}
+
+/// The problems of `text`, read from `file` as a `kind` (a shader is checked from its file).
+/// A deck that parsed adds its line to `report`.
+pub fn check_text(
+    kind: Kind,
+    text: &str,
+    file: &Path,
+    decks: &mut DeckChecker,
+    report: &mut Report,
+) -> Vec<Diagnostic> {
+    let first = |r: Result<(), Diagnostic>| r.err().into_iter().collect();
+    match kind {
         Kind::Deck => {
-            let checked = decks.check_file(file);
+            let checked = decks.check_text(text, file);
             if let Some(deck) = &checked.deck {
                 let n = deck.slides.len();
                 report.deck_lines.push(format!(
@@ -148,27 +169,12 @@ pub fn check_file(file: &Path, decks: &mut DeckChecker, report: &mut Report) {
                     minutes(deck.planned_secs())
                 ));
             }
-            as_result(checked.problems)
+            checked.problems
         }
-        Kind::Scene => as_result(crate::scene::check_file(file)),
-        Kind::Shader => as_result(crate::render::shaders::check_file(file)),
-        Kind::Problem => crate::ode::problem::Problem::load(file)
-            .map(|_| ())
-            .map_err(|d| vec![d]),
-        Kind::Tableau => crate::ode::Tableau::load(file)
-            .map(|_| ())
-            .map_err(|d| vec![d]),
-    };
-    if let Err(mut ds) = result {
-        report.problems.append(&mut ds);
-    }
-}
-
-fn as_result(problems: Vec<Diagnostic>) -> Result<(), Vec<Diagnostic>> {
-    if problems.is_empty() {
-        Ok(())
-    } else {
-        Err(problems)
+        Kind::Scene => first(crate::scene::parse_scene(text, file).map(|_| ())),
+        Kind::Shader => crate::render::shaders::check_file(file),
+        Kind::Problem => first(crate::ode::problem::Problem::parse(text, file).map(|_| ())),
+        Kind::Tableau => first(crate::ode::Tableau::parse(text, file).map(|_| ())),
     }
 }
 
