@@ -1,7 +1,9 @@
 //! The eframe app: modes, keys, overlays, presenter view — and the one slide renderer that the
 //! window, `lectern export` and the snapshot tests share.
 
+mod actions;
 mod blocks;
+mod files;
 mod images;
 pub mod keys;
 mod lectern_app;
@@ -14,6 +16,7 @@ pub mod slide_view;
 pub mod theme;
 pub mod tweak_file;
 pub mod tweaks;
+mod windows;
 
 pub use lectern_app::{LecternApp, Mode, Overlay};
 pub use offscreen::{OffscreenError, OffscreenRenderer, render_slide_png};

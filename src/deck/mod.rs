@@ -5,6 +5,7 @@ mod load;
 mod model;
 pub mod nav;
 mod session;
+pub mod widgets;
 pub mod write_back;
 
 pub use load::{load_deck, parse_deck, parse_deck_file};
