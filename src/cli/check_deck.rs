@@ -7,7 +7,8 @@
 //!   column is in mitex's converted text, which the lecturer never wrote);
 //! - every image resolves inside the project ([`crate::paths::resolve_for`]) and decodes
 //!   ([`crate::image_file::decode`]); its width is in the range the slide clamps to;
-//! - every file a widget names (tableaux) exists and parses, reported at the path string;
+//! - every file a widget names (tableaux, the simulation loop's scene) exists and parses,
+//!   reported at the path string;
 //!   tableaux written inline are validated at their values;
 //! - bookmarks name a slide the deck has, with a key 1…9.
 
@@ -200,6 +201,9 @@ impl Walk<'_> {
     }
 
     fn widget(&mut self, spec: &WidgetSpec, at: &str) {
+        if let WidgetSpec::SimulationLoop(s) = spec {
+            self.simulation_scene(&s.scene, s.body, at);
+        }
         if let WidgetSpec::Stability(s) = spec {
             for (k, t) in s.tableaux.iter().enumerate() {
                 if let Err((value, m)) = t.validate_at() {
@@ -212,6 +216,54 @@ impl Walk<'_> {
             for (k, written) in s.files.iter().enumerate() {
                 self.tableau_file(written, &format!("{at}.files[{k}]"));
             }
+        }
+    }
+
+    /// The scene a simulation-loop widget names: it must load and have floating body `body`.
+    /// (`scene` may be left to its default: then the position is the widget's.)
+    fn simulation_scene(&mut self, written: &str, body: usize, at: &str) {
+        let scene_at = format!("{at}.scene");
+        let scene_at = if self.node(&scene_at).is_some() {
+            scene_at
+        } else {
+            at.to_owned()
+        };
+        let full = match crate::paths::resolve_for(self.file, written) {
+            Err(e) => return self.at(&scene_at, format!("scene file: {e}")),
+            Ok(full) if !full.is_file() => {
+                return self.at(
+                    &scene_at,
+                    format!("scene file {} does not exist", full.display()),
+                );
+            }
+            Ok(full) => full,
+        };
+        let scene = match crate::scene::load_scene(&full) {
+            Ok(scene) => scene,
+            Err(d) => {
+                return self.at(
+                    &scene_at,
+                    format!("scene file `{written}` does not load: {d}"),
+                );
+            }
+        };
+        let level = scene.water.level;
+        let floating = (scene.objects.iter().enumerate())
+            .filter(|(i, o)| {
+                crate::scene::bodies::FloatingBody::from_object(*i, o, level).is_some()
+            })
+            .count();
+        if body >= floating {
+            let body_at = format!("{at}.body");
+            let body_at = if self.node(&body_at).is_some() {
+                body_at
+            } else {
+                scene_at
+            };
+            self.at(
+                &body_at,
+                format!("{written} has {floating} floating bodies: body {body} does not exist (counting from 0)"),
+            );
         }
     }
 
@@ -299,6 +351,18 @@ mod tests {
         assert_eq!(at, [(6, 56), (5, 53)], "{p:?}");
         assert!(p[0].message.contains("a[2][2]"), "{}", p[0]);
         assert!(p[1].message.contains("does not exist"), "{}", p[1]);
+    }
+
+    #[test]
+    fn the_simulation_loop_scene_and_body() {
+        let p = check(&deck(concat!(
+            "      Widget(SimulationLoop((scene: \"../scenes/nope.ron\"))),\n",
+            "      Widget(SimulationLoop((body: 9))),",
+        )));
+        let at: Vec<(usize, usize)> = p.iter().map(|d| (d.line, d.col)).collect();
+        assert_eq!(at, [(5, 37), (6, 36)], "{p:?}");
+        assert!(p[0].message.contains("does not exist"), "{}", p[0]);
+        assert!(p[1].message.contains("body 9"), "{}", p[1]);
     }
 
     #[test]
