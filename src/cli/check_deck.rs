@@ -190,7 +190,7 @@ impl Walk<'_> {
         match crate::paths::resolve_for(self.file, written) {
             Err(e) => self.at(&path_at, format!("image: {e}")),
             Ok(full) if !full.is_file() => {
-                self.at(&path_at, format!("image {} does not exist", full.display()))
+                self.at(&path_at, format!("image {} does not exist", shown(&full)))
             }
             Ok(full) => {
                 if let Err(e) = crate::image_file::decode(&full) {
@@ -233,7 +233,7 @@ impl Walk<'_> {
             Ok(full) if !full.is_file() => {
                 return self.at(
                     &scene_at,
-                    format!("scene file {} does not exist", full.display()),
+                    format!("scene file {} does not exist", shown(&full)),
                 );
             }
             Ok(full) => full,
@@ -271,10 +271,9 @@ impl Walk<'_> {
     fn tableau_file(&mut self, written: &str, at: &str) {
         match crate::paths::resolve_for(self.file, written) {
             Err(e) => self.at(at, format!("tableau file: {e}")),
-            Ok(full) if !full.is_file() => self.at(
-                at,
-                format!("tableau file {} does not exist", full.display()),
-            ),
+            Ok(full) if !full.is_file() => {
+                self.at(at, format!("tableau file {} does not exist", shown(&full)))
+            }
             Ok(full) => {
                 if let Err(d) = Tableau::load(&full) {
                     self.at(at, format!("tableau file `{written}` does not load: {d}"));
@@ -282,6 +281,11 @@ impl Walk<'_> {
             }
         }
     }
+}
+
+/// A resolved path as the lecturer would write it (without the `./` of a relative project).
+fn shown(path: &Path) -> String {
+    path.strip_prefix(".").unwrap_or(path).display().to_string()
 }
 
 #[cfg(test)]
