@@ -23,8 +23,21 @@ pub enum Kind {
     Tableau,
 }
 
+/// Files lectern writes beside a deck (live tweaks, rehearsal timings, ink): not decks.
+const COMPANION_SUFFIXES: [&str; 3] = [".tweaks.ron", ".timings.ron", ".ink.ron"];
+
+/// Whether `path` is one of the files lectern writes beside a deck.
+pub fn is_companion(path: &Path) -> bool {
+    path.file_name()
+        .and_then(|n| n.to_str())
+        .is_some_and(|n| COMPANION_SUFFIXES.iter().any(|s| n.ends_with(s)))
+}
+
 impl Kind {
     pub fn of(path: &Path) -> Option<Kind> {
+        if is_companion(path) {
+            return None;
+        }
         let ext = path.extension()?.to_str()?;
         let under = |name: &str| {
             path.parent()
@@ -80,6 +93,28 @@ pub fn minutes(secs: f32) -> String {
     format!("{}:{:02}", s / 60, s % 60)
 }
 
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn kinds_by_folder_and_companions_skipped() {
+        let kind = |p: &str| Kind::of(Path::new(p));
+        assert_eq!(kind("slides/lecture.ron"), Some(Kind::Deck));
+        assert_eq!(kind("slides/problems/kepler.ron"), Some(Kind::Problem));
+        assert_eq!(kind("slides/tableaux/rk4.ron"), Some(Kind::Tableau));
+        assert_eq!(kind("scenes/water.ron"), Some(Kind::Scene));
+        assert_eq!(kind("shaders/pbr.wgsl"), Some(Kind::Shader));
+        for companion in [
+            "lecture.tweaks.ron",
+            "lecture.timings.ron",
+            "lecture.ink.ron",
+        ] {
+            assert_eq!(kind(&format!("slides/{companion}")), None);
+        }
+    }
+}
+
 /// Checks every file under `paths` (files or folders, walked recursively in sorted order).
 /// Missing default folders are skipped; a missing path the user named is a problem.
 pub fn check_paths(paths: &[PathBuf], defaults: bool) -> Report {
@@ -97,10 +132,12 @@ pub fn check_paths(paths: &[PathBuf], defaults: bool) -> Report {
         let mut files = Vec::new();
         collect_files(path, &mut files);
         if path.is_file() && Kind::of(path).is_none() {
-            report.problems.push(Diagnostic::whole_file(
-                path,
-                "not a deck, scene, shader, problem or tableau (.ron or .wgsl)",
-            ));
+            let why = if is_companion(path) {
+                "a file lectern writes beside the deck (tweaks, timings or ink), not checked"
+            } else {
+                "not a deck, scene, shader, problem or tableau (.ron or .wgsl)"
+            };
+            report.problems.push(Diagnostic::whole_file(path, why));
         }
         for file in files {
             check_file(&file, &mut decks, &mut report);
