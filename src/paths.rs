@@ -98,7 +98,7 @@ pub fn resolve(base_dir: &Path, root: &Path, written: &str) -> Result<PathBuf, P
     }
     let escapes = || PathError::Escapes {
         written: written.to_string(),
-        root: root.to_path_buf(),
+        root: lexical(root),
     };
     // Lexically: where is `base_dir/written` relative to `root`? `base_dir` must be in `root`.
     let base_in_root = lexical(base_dir)

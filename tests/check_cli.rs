@@ -72,7 +72,7 @@ fn a_missing_image_at_its_path() {
         "image.ron",
         &deck(r#"      Image(path: "figures/nope.png"),"#),
     );
-    assert_one_problem(&f, 5, 19, "does not exist");
+    assert_one_problem(&f, 5, 20, "no such file");
 }
 
 #[test]
@@ -83,7 +83,7 @@ fn a_missing_tableau_file_at_its_path() {
         "tableau.ron",
         &deck(r#"      Widget(Stability((files: ["tableaux/nope.ron"]))),"#),
     );
-    assert_one_problem(&f, 5, 33, "nope.ron does not exist");
+    assert_one_problem(&f, 5, 34, "`tableaux/nope.ron`: no such file");
 }
 
 #[test]

@@ -480,8 +480,10 @@ fn simulation_loop_numbers_are_the_bodys_derivative() {
 #[test]
 fn simulation_loop_reports_a_missing_scene_or_body() {
     let slides = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("slides");
-    let mut spec = lectern::deck::widgets::SimulationLoopSpec::default();
-    spec.body = 7;
+    let mut spec = lectern::deck::widgets::SimulationLoopSpec {
+        body: 7,
+        ..Default::default()
+    };
     let mut w =
         lectern::widgets::simulation_loop::SimulationLoop::new_in(spec.clone(), Some(&slides));
     assert!(w.advance(0.1).is_none());

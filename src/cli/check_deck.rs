@@ -2,14 +2,14 @@
 //! code the app uses, each problem at the deck's line and column of the value at fault.
 //!
 //! - the deck parses and validates ([`crate::deck::parse_deck_file`]);
-//! - every formula typesets ([`crate::math::render_formula`]); a Typst error points at the
-//!   faulty character inside the `src` string, a LaTeX one at the formula's start (Typst's
-//!   column is in mitex's converted text, which the lecturer never wrote);
-//! - every image resolves inside the project ([`crate::paths::resolve_for`]) and decodes
-//!   ([`crate::image_file::decode`]); its width is in the range the slide clamps to;
-//! - every file a widget names (tableaux, the simulation loop's scene) exists and parses,
-//!   reported at the path string;
-//!   tableaux written inline are validated at their values;
+//! - every formula typesets through the bounded typesetting pool the window uses
+//!   ([`crate::math::deck`]); a Typst error points at the faulty character inside the `src`
+//!   string, a LaTeX one at the formula's start (Typst's column is in mitex's converted text,
+//!   which the lecturer never wrote);
+//! - every file the deck names (pictures, tableau files, the simulation loop's scene) is inside
+//!   the project, exists and loads ([`crate::deck::files`]), reported at the path string;
+//! - what the widgets would otherwise clamp or refuse silently: image widths in range, tableaux
+//!   written inline valid (at their values), the simulation loop's body present;
 //! - bookmarks name a slide the deck has, with a key 1…9.
 
 use std::collections::HashMap;
@@ -17,20 +17,18 @@ use std::path::Path;
 
 use crate::deck::{Block, Deck, IMAGE_WIDTH_RANGE, parse_deck_file};
 use crate::diag::Diagnostic;
-use crate::math::{MathError, MathSyntax, render_formula};
-use crate::ode::Tableau;
+use crate::math::{MathError, MathSyntax};
 use crate::ron_tree::{self, Node};
 use crate::widgets::WidgetSpec;
 
-/// Formulas are typeset at this many pixels per em: the size does not change whether Typst
-/// accepts a formula, and a small raster keeps the check fast.
-const CHECK_EM_PX: f32 = 24.0;
+/// Formulas are typeset at this many pixels per em (as `math::deck::check_formulas` does).
+const CHECK_EM_PX: f32 = 40.0;
 
 /// Checks decks; keeps the verdict on each formula, so a formula written twice (or a deck
 /// checked again) is typeset once.
 #[derive(Default)]
 pub struct DeckChecker {
-    formulas: HashMap<(String, bool), Result<(), MathError>>,
+    formulas: HashMap<(String, MathSyntax), Result<(), MathError>>,
     /// Typeset formulas (default). Off only where a test needs thousands of decks per second.
     pub skip_typesetting: bool,
 }
@@ -73,10 +71,11 @@ impl DeckChecker {
             text,
             file,
             tree: tree.as_ref(),
-            problems: Vec::new(),
+            problems: crate::deck::files::check_deck_files(file, text, &deck),
         };
+        self.formulas(&mut walk, &deck);
         for (i, slide) in deck.slides.iter().enumerate() {
-            self.blocks(&mut walk, &slide.body, &format!("slides[{i}].body"));
+            walk.blocks(&slide.body, &format!("slides[{i}].body"));
         }
         for (i, b) in deck.bookmarks.iter().enumerate() {
             if !(1..=9).contains(&b.key) {
@@ -95,57 +94,35 @@ impl DeckChecker {
                 );
             }
         }
+        walk.problems.sort_by_key(|d| (d.line, d.col));
         DeckCheck {
             problems: walk.problems,
             deck: Some(deck),
         }
     }
 
-    fn blocks(&mut self, walk: &mut Walk, blocks: &[Block], at: &str) {
-        for (j, block) in blocks.iter().enumerate() {
-            let at = format!("{at}[{j}]");
-            match block {
-                Block::Text(_) | Block::Bullets(_) => {}
-                Block::Math { src, latex } => self.formula(walk, src, *latex, &at),
-                Block::Image { path, width } => walk.image(path, *width, &at),
-                Block::Widget(spec) => walk.widget(spec, &at),
-                Block::Columns(cols) => {
-                    for (c, col) in cols.iter().enumerate() {
-                        self.blocks(walk, col, &format!("{at}[{c}]"));
-                    }
-                }
-            }
+    /// Typesets every formula not seen before through the pool (all queued first, so both
+    /// workers stay busy), and reports each that fails at its place.
+    fn formulas(&mut self, walk: &mut Walk, deck: &Deck) {
+        let all = crate::math::deck::formulas(deck, None);
+        let new: Vec<_> = all
+            .iter()
+            .filter(|f| !self.formulas.contains_key(&(f.src.to_owned(), f.syntax)))
+            .filter(|_| !self.skip_typesetting)
+            .map(|f| {
+                let req = f.request(CHECK_EM_PX, [0, 0, 0, 255]);
+                (f, crate::math::pool().submit(req, true, true, None))
+            })
+            .collect();
+        for (f, job) in new {
+            let verdict = job.wait().map(|_| ());
+            self.formulas.insert((f.src.to_owned(), f.syntax), verdict);
         }
-    }
-
-    fn formula(&mut self, walk: &mut Walk, src: &str, latex: bool, at: &str) {
-        let verdict = match self.formulas.get(&(src.to_owned(), latex)) {
-            Some(v) => v.clone(),
-            None if self.skip_typesetting => Ok(()),
-            None => {
-                let syntax = if latex {
-                    MathSyntax::Latex
-                } else {
-                    MathSyntax::Typst
-                };
-                let v = render_formula(src, syntax, CHECK_EM_PX, [0, 0, 0, 255]).map(|_| ());
-                self.formulas.insert((src.to_owned(), latex), v.clone());
-                v
+        for f in &all {
+            if let Some(Err(e)) = self.formulas.get(&(f.src.to_owned(), f.syntax)) {
+                let d = crate::math::deck::diagnostic(walk.file, walk.text, f, e);
+                walk.push(d);
             }
-        };
-        let Err(e) = verdict else { return };
-        let node = walk.node(&format!("{at}.src"));
-        // Typst's column counts characters of what the lecturer wrote; for LaTeX it would
-        // count mitex's output, so the formula's start is the honest place.
-        let (char_at, what) = match (latex, e.col) {
-            (false, Some(col)) => (col - 1, "formula"),
-            (false, None) => (0, "formula"),
-            (true, _) => (0, "LaTeX formula"),
-        };
-        let message = format!("{what}: {}", e.message);
-        match node.and_then(|n| n.str_offset(walk.text, char_at)) {
-            Some(offset) => walk.push(Diagnostic::at_offset(walk.text, walk.file, offset, message)),
-            None => walk.at(at, message),
         }
     }
 }
@@ -173,79 +150,56 @@ impl Walk<'_> {
         self.problems.push(d);
     }
 
-    fn image(&mut self, written: &str, width: Option<f32>, at: &str) {
-        if let Some(w) = width
-            && !IMAGE_WIDTH_RANGE.contains(&w)
-        {
-            self.at(
-                &format!("{at}.width"),
-                format!(
-                    "image width {w} is outside {}..={} (a fraction of the slide's width)",
-                    IMAGE_WIDTH_RANGE.start(),
-                    IMAGE_WIDTH_RANGE.end()
+    /// What the widgets and blocks would clamp or refuse silently (files and formulas are
+    /// checked beforehand, by the app's own modules).
+    fn blocks(&mut self, blocks: &[Block], at: &str) {
+        for (j, block) in blocks.iter().enumerate() {
+            let at = format!("{at}[{j}]");
+            match block {
+                Block::Image { width: Some(w), .. } if !IMAGE_WIDTH_RANGE.contains(w) => self.at(
+                    &format!("{at}.width"),
+                    format!(
+                        "image width {w} is outside {}..={} (a fraction of the slide's width)",
+                        IMAGE_WIDTH_RANGE.start(),
+                        IMAGE_WIDTH_RANGE.end()
+                    ),
                 ),
-            );
-        }
-        let path_at = format!("{at}.path");
-        match crate::paths::resolve_for(self.file, written) {
-            Err(e) => self.at(&path_at, format!("image: {e}")),
-            Ok(full) if !full.is_file() => {
-                self.at(&path_at, format!("image {} does not exist", shown(&full)))
-            }
-            Ok(full) => {
-                if let Err(e) = crate::image_file::decode(&full) {
-                    self.at(&path_at, e);
+                Block::Widget(spec) => self.widget(spec, &at),
+                Block::Columns(cols) => {
+                    for (c, col) in cols.iter().enumerate() {
+                        self.blocks(col, &format!("{at}[{c}]"));
+                    }
                 }
+                _ => {}
             }
         }
     }
 
     fn widget(&mut self, spec: &WidgetSpec, at: &str) {
-        if let WidgetSpec::SimulationLoop(s) = spec {
-            self.simulation_scene(&s.scene, s.body, at);
-        }
-        if let WidgetSpec::Stability(s) = spec {
-            for (k, t) in s.tableaux.iter().enumerate() {
-                if let Err((value, m)) = t.validate_at() {
-                    self.at(
-                        &format!("{at}.tableaux[{k}].{value}"),
-                        format!("tableau: {m}"),
-                    );
+        match spec {
+            WidgetSpec::SimulationLoop(s) => self.simulation_body(&s.scene, s.body, at),
+            WidgetSpec::Stability(s) => {
+                for (k, t) in s.tableaux.iter().enumerate() {
+                    if let Err((value, m)) = t.validate_at() {
+                        self.at(
+                            &format!("{at}.tableaux[{k}].{value}"),
+                            format!("tableau: {m}"),
+                        );
+                    }
                 }
             }
-            for (k, written) in s.files.iter().enumerate() {
-                self.tableau_file(written, &format!("{at}.files[{k}]"));
-            }
+            _ => {}
         }
     }
 
-    /// The scene a simulation-loop widget names: it must load and have floating body `body`.
-    /// (`scene` may be left to its default: then the position is the widget's.)
-    fn simulation_scene(&mut self, written: &str, body: usize, at: &str) {
-        let scene_at = format!("{at}.scene");
-        let scene_at = if self.node(&scene_at).is_some() {
-            scene_at
-        } else {
-            at.to_owned()
+    /// The simulation loop's body must exist in its scene (the scene file itself is checked
+    /// with the deck's files; a scene that does not load is reported there).
+    fn simulation_body(&mut self, written: &str, body: usize, at: &str) {
+        let Ok(full) = crate::paths::resolve_for(self.file, written) else {
+            return;
         };
-        let full = match crate::paths::resolve_for(self.file, written) {
-            Err(e) => return self.at(&scene_at, format!("scene file: {e}")),
-            Ok(full) if !full.is_file() => {
-                return self.at(
-                    &scene_at,
-                    format!("scene file {} does not exist", shown(&full)),
-                );
-            }
-            Ok(full) => full,
-        };
-        let scene = match crate::scene::load_scene(&full) {
-            Ok(scene) => scene,
-            Err(d) => {
-                return self.at(
-                    &scene_at,
-                    format!("scene file `{written}` does not load: {d}"),
-                );
-            }
+        let Ok(scene) = crate::scene::load_scene(&full) else {
+            return;
         };
         let level = scene.water.level;
         let floating = (scene.objects.iter().enumerate())
@@ -258,34 +212,16 @@ impl Walk<'_> {
             let body_at = if self.node(&body_at).is_some() {
                 body_at
             } else {
-                scene_at
+                at.to_owned()
             };
             self.at(
                 &body_at,
-                format!("{written} has {floating} floating bodies: body {body} does not exist (counting from 0)"),
+                format!(
+                    "{written} has {floating} floating bodies: body {body} does not exist (counting from 0)"
+                ),
             );
         }
     }
-
-    /// A tableau file a widget names: it must exist inside the project and load.
-    fn tableau_file(&mut self, written: &str, at: &str) {
-        match crate::paths::resolve_for(self.file, written) {
-            Err(e) => self.at(at, format!("tableau file: {e}")),
-            Ok(full) if !full.is_file() => {
-                self.at(at, format!("tableau file {} does not exist", shown(&full)))
-            }
-            Ok(full) => {
-                if let Err(d) = Tableau::load(&full) {
-                    self.at(at, format!("tableau file `{written}` does not load: {d}"));
-                }
-            }
-        }
-    }
-}
-
-/// A resolved path as the lecturer would write it (without the `./` of a relative project).
-fn shown(path: &Path) -> String {
-    path.strip_prefix(".").unwrap_or(path).display().to_string()
 }
 
 #[cfg(test)]
@@ -329,7 +265,7 @@ mod tests {
         ));
         assert_eq!(p.len(), 1, "{p:?}");
         assert_eq!((p[0].line, p[0].col), (5, 18), "{}", p[0]);
-        assert!(p[0].message.starts_with("LaTeX formula"), "{}", p[0]);
+        assert!(p[0].message.contains("LaTeX"), "{}", p[0]);
     }
 
     #[test]
@@ -338,11 +274,12 @@ mod tests {
             "      Image(path: \"nope.png\"),\n      Image(path: \"../../../etc/passwd\"),\n      Image(path: \"lecture.ron\", width: Some(3.0)),",
         ));
         let at: Vec<(usize, usize)> = p.iter().map(|d| (d.line, d.col)).collect();
-        assert_eq!(at, [(5, 19), (6, 19), (7, 46), (7, 19)], "{p:?}");
-        assert!(p[0].message.contains("does not exist"), "{}", p[0]);
+        // at the path's first character; the width at its value
+        assert_eq!(at, [(5, 20), (6, 20), (7, 20), (7, 46)], "{p:?}");
+        assert!(p[0].message.contains("no such file"), "{}", p[0]);
         assert!(p[1].message.contains("outside the project"), "{}", p[1]);
-        assert!(p[2].message.contains("width 3"), "{}", p[2]);
-        assert!(p[3].message.contains("decode"), "{}", p[3]);
+        assert!(p[2].message.contains("decode"), "{}", p[2]);
+        assert!(p[3].message.contains("width 3"), "{}", p[3]);
     }
 
     #[test]
@@ -352,9 +289,9 @@ mod tests {
             "        tableaux: [(name: \"bad\", a: [[0.0, 0.0], [0.5, 0.5]], b: [0.5, 0.5], c: [0.0, 0.5])]))),",
         )));
         let at: Vec<(usize, usize)> = p.iter().map(|d| (d.line, d.col)).collect();
-        assert_eq!(at, [(6, 56), (5, 53)], "{p:?}");
-        assert!(p[0].message.contains("a[2][2]"), "{}", p[0]);
-        assert!(p[1].message.contains("does not exist"), "{}", p[1]);
+        assert_eq!(at, [(5, 54), (6, 56)], "{p:?}");
+        assert!(p[0].message.contains("no such file"), "{}", p[0]);
+        assert!(p[1].message.contains("a[2][2]"), "{}", p[1]);
     }
 
     #[test]
@@ -364,8 +301,8 @@ mod tests {
             "      Widget(SimulationLoop((body: 9))),",
         )));
         let at: Vec<(usize, usize)> = p.iter().map(|d| (d.line, d.col)).collect();
-        assert_eq!(at, [(5, 37), (6, 36)], "{p:?}");
-        assert!(p[0].message.contains("does not exist"), "{}", p[0]);
+        assert_eq!(at, [(5, 38), (6, 36)], "{p:?}");
+        assert!(p[0].message.contains("no such file"), "{}", p[0]);
         assert!(p[1].message.contains("body 9"), "{}", p[1]);
     }
 

@@ -1,4 +1,4 @@
-//! 10. The lecture's exercise: the same path twice, fish oriented by the Frenet frame (left)
+//! Widget 10, the lecture's exercise: the same path twice, fish oriented by the Frenet frame (left)
 //! and by the parallel-transport frame (right), with one transport step spelled out:
 //! R takes the old heading to the new one, q_new = normalize(q(R) · q_old). The frames come
 //! from `school::frames`, whose transport step is the school's own, so the slide teaches what

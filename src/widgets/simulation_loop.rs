@@ -1,4 +1,4 @@
-//! 11. "Simulation overview", which the notes drew as a picture: the loop every frame runs for a
+//! Widget 11, "simulation overview", which the notes drew as a picture: the loop every frame runs for a
 //! rigid body — state → forces and torques → derivative → integrator step → renormalise q and
 //! recompute I⁻¹ → render — as a cycle, each stage with the live numbers of one of the scene's
 //! floating bodies, stepped by the same code as scene mode (`scene::bodies`).
