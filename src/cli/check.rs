@@ -93,28 +93,6 @@ pub fn minutes(secs: f32) -> String {
     format!("{}:{:02}", s / 60, s % 60)
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn kinds_by_folder_and_companions_skipped() {
-        let kind = |p: &str| Kind::of(Path::new(p));
-        assert_eq!(kind("slides/lecture.ron"), Some(Kind::Deck));
-        assert_eq!(kind("slides/problems/kepler.ron"), Some(Kind::Problem));
-        assert_eq!(kind("slides/tableaux/rk4.ron"), Some(Kind::Tableau));
-        assert_eq!(kind("scenes/water.ron"), Some(Kind::Scene));
-        assert_eq!(kind("shaders/pbr.wgsl"), Some(Kind::Shader));
-        for companion in [
-            "lecture.tweaks.ron",
-            "lecture.timings.ron",
-            "lecture.ink.ron",
-        ] {
-            assert_eq!(kind(&format!("slides/{companion}")), None);
-        }
-    }
-}
-
 /// Checks every file under `paths` (files or folders, walked recursively in sorted order).
 /// Missing default folders are skipped; a missing path the user named is a problem.
 pub fn check_paths(paths: &[PathBuf], defaults: bool) -> Report {
@@ -237,5 +215,27 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         Ok(())
     } else {
         Err(anyhow::anyhow!("{} problem(s)", report.problems.len()))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn kinds_by_folder_and_companions_skipped() {
+        let kind = |p: &str| Kind::of(Path::new(p));
+        assert_eq!(kind("slides/lecture.ron"), Some(Kind::Deck));
+        assert_eq!(kind("slides/problems/kepler.ron"), Some(Kind::Problem));
+        assert_eq!(kind("slides/tableaux/rk4.ron"), Some(Kind::Tableau));
+        assert_eq!(kind("scenes/water.ron"), Some(Kind::Scene));
+        assert_eq!(kind("shaders/pbr.wgsl"), Some(Kind::Shader));
+        for companion in [
+            "lecture.tweaks.ron",
+            "lecture.timings.ron",
+            "lecture.ink.ron",
+        ] {
+            assert_eq!(kind(&format!("slides/{companion}")), None);
+        }
     }
 }

@@ -46,29 +46,29 @@ fn validate(deck: &Deck, text: &str, file: &Path) -> Result<(), Diagnostic> {
     }
     let mut seen: HashMap<&str, usize> = HashMap::new();
     for (i, slide) in deck.slides.iter().enumerate() {
-        if let Some(id) = slide.id.as_deref() {
-            if let Some(first) = seen.insert(id, i) {
-                return Err(at(
-                    &format!("slides[{i}].id"),
-                    format!(
-                        "slide id \"{id}\" is used by slides {} and {}; ids must be unique",
-                        first + 1,
-                        i + 1
-                    ),
-                ));
-            }
+        if let Some(id) = slide.id.as_deref()
+            && let Some(first) = seen.insert(id, i)
+        {
+            return Err(at(
+                &format!("slides[{i}].id"),
+                format!(
+                    "slide id \"{id}\" is used by slides {} and {}; ids must be unique",
+                    first + 1,
+                    i + 1
+                ),
+            ));
         }
-        if let Some(s) = slide.seconds {
-            if !s.is_finite() || s < 0.0 {
-                return Err(at(
-                    &format!("slides[{i}].seconds"),
-                    format!(
-                        "slide {} (\"{}\"): seconds must be a non-negative number, got {s}",
-                        i + 1,
-                        slide.title
-                    ),
-                ));
-            }
+        if let Some(s) = slide.seconds
+            && (!s.is_finite() || s < 0.0)
+        {
+            return Err(at(
+                &format!("slides[{i}].seconds"),
+                format!(
+                    "slide {} (\"{}\"): seconds must be a non-negative number, got {s}",
+                    i + 1,
+                    slide.title
+                ),
+            ));
         }
     }
     Ok(())
