@@ -35,6 +35,31 @@ impl Diagnostic {
         Self::new(file, 0, 0, message)
     }
 
+    /// A problem with the value at `path` (a [`crate::ron_tree`] path such as
+    /// `slides[3].seconds`) of the RON `text` parsed into `tree`: at the value's line and
+    /// column, or for the whole file when the path is not found.
+    pub fn at_value(
+        tree: Option<&crate::ron_tree::Node>,
+        text: &str,
+        file: &Path,
+        path: &str,
+        message: impl Into<String>,
+    ) -> Self {
+        match tree.and_then(|t| t.at(path)) {
+            Some(node) => {
+                let (line, col) = node.line_col(text);
+                Self::new(file, line, col, message)
+            }
+            None => Self::whole_file(file, message),
+        }
+    }
+
+    /// A problem at byte `offset` of `text`.
+    pub fn at_offset(text: &str, file: &Path, offset: usize, message: impl Into<String>) -> Self {
+        let (line, col) = crate::ron_tree::line_col(text, offset);
+        Self::new(file, line, col, message)
+    }
+
     /// Converts a `ron` parse error, which carries a 1-based position.
     pub fn from_ron(file: &Path, err: &ron::error::SpannedError) -> Self {
         Self::new(

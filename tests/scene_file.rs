@@ -347,7 +347,9 @@ fn range_errors_point_at_the_offending_occurrence_not_the_first() {
         let line = text.lines().position(|l| l.contains(to)).unwrap() + 1;
         let d = scene::parse_scene(&text, Path::new("w.ron")).unwrap_err();
         assert_eq!(d.line, line, "{to}: {d}");
-        let col = text.lines().nth(line - 1).unwrap().find(to).unwrap() + 1;
+        // at the value itself, after `name: `
+        let value_at = to.find(": ").unwrap() + 2;
+        let col = text.lines().nth(line - 1).unwrap().find(to).unwrap() + value_at + 1;
         assert_eq!(d.col, col, "{to}: {d}");
     }
 }

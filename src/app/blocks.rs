@@ -239,7 +239,11 @@ fn block_ui(
                     .layout(egui::Layout::top_down(Align::Min)),
             );
             child.set_clip_rect(rect.intersect(ui.clip_rect()));
-            state.widget(path, spec, bctx.deck_file).ui(&mut child);
+            let widget = state.widget(path, spec, bctx.deck_file);
+            widget.ui(&mut child);
+            for problem in widget.problems() {
+                state.note_problem(format!("{} widget {path:?}: {problem}", spec.kind()));
+            }
         }
         Block::Columns(cols) => {
             let n = cols.len().max(1) as f32;

@@ -56,7 +56,11 @@ pub(crate) fn image_size(
     avail_w: f32,
     look: &Look,
 ) -> (f32, f32) {
-    let w = avail_w * width.unwrap_or(1.0).clamp(0.05, 1.0);
+    let w = avail_w
+        * width.unwrap_or(1.0).clamp(
+            *crate::deck::IMAGE_WIDTH_RANGE.start(),
+            *crate::deck::IMAGE_WIDTH_RANGE.end(),
+        );
     match texture(ctx, base_dir, path) {
         Ok(t) => {
             let [tw, th] = t.size();

@@ -159,7 +159,8 @@ impl OffscreenRenderer {
         image
     }
 
-    /// Slide `index` of `deck` at `size` pixels, as the window shows it.
+    /// Slide `index` of `deck` at `size` pixels, as a 1280-point-wide window shows it (see
+    /// [`slide_pixels_per_point`]), so a 720p, a 1080p and a 4K export are the same picture.
     pub fn render_slide(
         &mut self,
         deck: &Deck,
@@ -167,7 +168,8 @@ impl OffscreenRenderer {
         state: &mut SlideState,
         size: [u32; 2],
     ) -> Result<RgbaImage, OffscreenError> {
-        self.render(size, 1.0, |ui| {
+        let ppp = slide_pixels_per_point(deck, size);
+        self.render(size, ppp, |ui| {
             slide_ui_with(ui, deck, index, state, SlideOptions::default());
         })
     }
@@ -251,6 +253,21 @@ impl OffscreenRenderer {
             .submit(user_buffers.into_iter().chain(Some(encoder.finish())));
         read_back(&rs.device, &rs.queue, &texture)
     }
+}
+
+/// Width in points of the window whose layout an exported slide shows: the size the slides are
+/// designed and snapshot-tested at.
+pub const SLIDE_LAYOUT_WIDTH_PT: f32 = 1280.0;
+
+/// Pixels per point for an image of `size` pixels of a slide of `deck`: the slide is laid out
+/// as on a [`SLIDE_LAYOUT_WIDTH_PT`]-wide window and scaled to the pixels. With one point per
+/// pixel at every size, a 4K image would lay out on a 3840-point canvas: text scales with the
+/// slide but plot strokes, ticks and markers keep their size in points and the plots come out
+/// thin and differently ticked.
+pub fn slide_pixels_per_point(deck: &Deck, size: [u32; 2]) -> f32 {
+    let [w, h] = size.map(|v| v.max(1) as f32);
+    let layout_h = SLIDE_LAYOUT_WIDTH_PT / deck.aspect.ratio();
+    (w / SLIDE_LAYOUT_WIDTH_PT).min(h / layout_h)
 }
 
 /// Copies an RGBA8 texture into an image (rows padded to wgpu's 256-byte alignment, then

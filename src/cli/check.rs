@@ -3,7 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::deck::load_deck;
+use super::check_deck::DeckChecker;
 use crate::diag::Diagnostic;
 
 /// Validate decks, scenes, shaders and problems.
@@ -23,8 +23,21 @@ pub enum Kind {
     Tableau,
 }
 
+/// Files lectern writes beside a deck (live tweaks, rehearsal timings, ink): not decks.
+const COMPANION_SUFFIXES: [&str; 3] = [".tweaks.ron", ".timings.ron", ".ink.ron"];
+
+/// Whether `path` is one of the files lectern writes beside a deck.
+pub fn is_companion(path: &Path) -> bool {
+    path.file_name()
+        .and_then(|n| n.to_str())
+        .is_some_and(|n| COMPANION_SUFFIXES.iter().any(|s| n.ends_with(s)))
+}
+
 impl Kind {
     pub fn of(path: &Path) -> Option<Kind> {
+        if is_companion(path) {
+            return None;
+        }
         let ext = path.extension()?.to_str()?;
         let under = |name: &str| {
             path.parent()
@@ -84,6 +97,7 @@ pub fn minutes(secs: f32) -> String {
 /// Missing default folders are skipped; a missing path the user named is a problem.
 pub fn check_paths(paths: &[PathBuf], defaults: bool) -> Report {
     let mut report = Report::default();
+    let mut decks = DeckChecker::new();
     for path in paths {
         if !path.exists() {
             if !defaults {
@@ -96,13 +110,15 @@ pub fn check_paths(paths: &[PathBuf], defaults: bool) -> Report {
         let mut files = Vec::new();
         collect_files(path, &mut files);
         if path.is_file() && Kind::of(path).is_none() {
-            report.problems.push(Diagnostic::whole_file(
-                path,
-                "not a deck, scene, shader, problem or tableau (.ron or .wgsl)",
-            ));
+            let why = if is_companion(path) {
+                "a file lectern writes beside the deck (tweaks, timings or ink), not checked"
+            } else {
+                "not a deck, scene, shader, problem or tableau (.ron or .wgsl)"
+            };
+            report.problems.push(Diagnostic::whole_file(path, why));
         }
         for file in files {
-            check_file(&file, &mut report);
+            check_file(&file, &mut decks, &mut report);
         }
     }
     report
@@ -131,50 +147,49 @@ fn collect_files(path: &Path, out: &mut Vec<PathBuf>) {
     }
 }
 
-fn check_file(file: &Path, report: &mut Report) {
+/// Checks one file by its kind, adding its problems (and, for a deck, its line) to `report`.
+pub fn check_file(file: &Path, decks: &mut DeckChecker, report: &mut Report) {
     let Some(kind) = Kind::of(file) else { return };
     report.counts[kind as usize] += 1;
-    let result: Result<(), Vec<Diagnostic>> = match kind {
-        Kind::Deck => match load_deck(file) {
-            Ok(deck) => {
-                report.deck_lines.push(format!(
-                    "{}: {} slides, {} planned",
-                    file.display(),
-                    deck.slides.len(),
-                    minutes(deck.planned_secs())
-                ));
-                // The files it names (confined to the project) and its formulas (typeset
-                // within the same time and memory bounds as in the window).
-                let text = std::fs::read_to_string(file).unwrap_or_default();
-                let mut problems = crate::deck::files::check_deck_files(file, &text, &deck);
-                problems.extend(crate::math::deck::check_formulas(file, &text, &deck));
-                // A widget whose equation or tableau does not load leaves the talk running,
-                // but it is still a problem to fix before the talk.
-                problems.extend(deck.widget_problems.iter().map(|p| p.diagnostic.clone()));
-                problems.sort_by_key(|d| (d.line, d.col));
-                as_result(problems)
-            }
-            Err(d) => Err(vec![d]),
+    let problems = match kind {
+        // a shader is read with its includes
+        Kind::Shader => crate::render::shaders::check_file(file),
+        _ => match std::fs::read_to_string(file) {
+            Ok(text) => check_text(kind, &text, file, decks, report),
+            Err(e) => vec![Diagnostic::whole_file(file, format!("cannot read: {e}"))],
         },
-        Kind::Scene => as_result(crate::scene::check_file(file)),
-        Kind::Shader => as_result(crate::render::shaders::check_file(file)),
-        Kind::Problem => crate::ode::problem::Problem::load(file)
-            .map(|_| ())
-            .map_err(|d| vec![d]),
-        Kind::Tableau => crate::ode::Tableau::load(file)
-            .map(|_| ())
-            .map_err(|d| vec![d]),
     };
-    if let Err(mut ds) = result {
-        report.problems.append(&mut ds);
-    }
+    report.problems.extend(problems);
 }
 
-fn as_result(problems: Vec<Diagnostic>) -> Result<(), Vec<Diagnostic>> {
-    if problems.is_empty() {
-        Ok(())
-    } else {
-        Err(problems)
+/// The problems of `text`, read from `file` as a `kind` (a shader is checked from its file).
+/// A deck that parsed adds its line to `report`.
+pub fn check_text(
+    kind: Kind,
+    text: &str,
+    file: &Path,
+    decks: &mut DeckChecker,
+    report: &mut Report,
+) -> Vec<Diagnostic> {
+    let first = |r: Result<(), Diagnostic>| r.err().into_iter().collect();
+    match kind {
+        Kind::Deck => {
+            let checked = decks.check_text(text, file);
+            if let Some(deck) = &checked.deck {
+                let n = deck.slides.len();
+                report.deck_lines.push(format!(
+                    "{}: {n} slide{}, {} planned",
+                    file.display(),
+                    if n == 1 { "" } else { "s" },
+                    minutes(deck.planned_secs())
+                ));
+            }
+            checked.problems
+        }
+        Kind::Scene => first(crate::scene::parse_scene(text, file).map(|_| ())),
+        Kind::Shader => crate::render::shaders::check_file(file),
+        Kind::Problem => first(crate::ode::problem::Problem::parse(text, file).map(|_| ())),
+        Kind::Tableau => first(crate::ode::Tableau::parse(text, file).map(|_| ())),
     }
 }
 
@@ -200,5 +215,27 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         Ok(())
     } else {
         Err(anyhow::anyhow!("{} problem(s)", report.problems.len()))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn kinds_by_folder_and_companions_skipped() {
+        let kind = |p: &str| Kind::of(Path::new(p));
+        assert_eq!(kind("slides/lecture.ron"), Some(Kind::Deck));
+        assert_eq!(kind("slides/problems/kepler.ron"), Some(Kind::Problem));
+        assert_eq!(kind("slides/tableaux/rk4.ron"), Some(Kind::Tableau));
+        assert_eq!(kind("scenes/water.ron"), Some(Kind::Scene));
+        assert_eq!(kind("shaders/pbr.wgsl"), Some(Kind::Shader));
+        for companion in [
+            "lecture.tweaks.ron",
+            "lecture.timings.ron",
+            "lecture.ink.ron",
+        ] {
+            assert_eq!(kind(&format!("slides/{companion}")), None);
+        }
     }
 }

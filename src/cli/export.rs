@@ -1,32 +1,54 @@
-//! `lectern export`: render every slide to PNG, headless, through the window's slide renderer.
+//! `lectern export`: render every slide to PNG and/or a PDF handout, headless, through the
+//! window's slide renderer. Exits non-zero when a formula or a widget failed on some slide (the
+//! files are still written) unless `--keep-going`.
 
 use std::path::PathBuf;
 
 use anyhow::Context as _;
 
+use super::export_pdf::HandoutWriter;
 use crate::app::tweak_file::TweakFile;
 use crate::app::{OffscreenRenderer, SlideState};
 use crate::deck::load_deck;
 
-/// Render every slide to PNG, headless (any GPU, or Mesa's software adapter).
+/// Render every slide to PNG and/or a PDF handout, headless (any GPU, or Mesa's software
+/// adapter).
 #[derive(Debug, clap::Args)]
+#[command(group(clap::ArgGroup::new("target").args(["out", "pdf"]).required(true).multiple(true)))]
 pub struct Args {
     /// The deck to export [default: slides/lecture.ron]
     pub deck: Option<PathBuf>,
     /// Folder for slide-01.png, slide-02.png, …
     #[arg(long, short)]
-    pub out: PathBuf,
-    /// Image size in pixels, WIDTHxHEIGHT.
-    #[arg(long, default_value = "1920x1080", value_parser = parse_size)]
-    pub size: [u32; 2],
+    pub out: Option<PathBuf>,
+    /// Also (or only) write a PDF: one page per slide, the page shaped like the slide.
+    #[arg(long, value_name = "FILE.pdf")]
+    pub pdf: Option<PathBuf>,
+    /// PDF handout layout: A4 pages with the slide on top and its speaker notes below (as
+    /// text that can be searched and copied).
+    #[arg(long, requires = "pdf")]
+    pub notes: bool,
+    /// Image size in pixels, WIDTHxHEIGHT [default: 1920 wide, at the deck's aspect].
+    #[arg(long, value_parser = parse_size)]
+    pub size: Option<[u32; 2]>,
     /// Apply the live tweaks the presenter saved (`DECK.tweaks.ron`, written by `E` or
     /// `Ctrl+S` while presenting), so the images show exactly what was presented.
     #[arg(long, value_name = "FILE")]
     pub with_tweaks: Option<PathBuf>,
     /// Also write every plot widget's computed points as CSV, DIR/slide-NN-wK.csv
-    /// (header `series,t,<vars>`, one row per integrator step).
-    #[arg(long)]
+    /// (header `series,t,<vars>`, one row per integrator step); needs `--out`.
+    #[arg(long, requires = "out")]
     pub data: bool,
+    /// Exit 0 even when a formula or a widget failed on some slide (the failures are still
+    /// listed).
+    #[arg(long)]
+    pub keep_going: bool,
+}
+
+/// The default image size for a deck: 1920 pixels wide, as tall as its aspect asks.
+pub fn default_size(aspect: crate::deck::Aspect) -> [u32; 2] {
+    let h = (1920.0 / aspect.ratio()).round() as u32;
+    [1920, h.clamp(16, 8192)]
 }
 
 /// "1920x1080" → [1920, 1080].
@@ -49,6 +71,7 @@ pub fn parse_size(s: &str) -> Result<[u32; 2], String> {
 pub fn run(args: Args) -> anyhow::Result<()> {
     let path = args.deck.unwrap_or_else(super::present::default_deck);
     let deck = load_deck(&path).map_err(|d| anyhow::anyhow!("{d}"))?;
+    let size = args.size.unwrap_or_else(|| default_size(deck.aspect));
     let tweaks = match &args.with_tweaks {
         Some(file) => TweakFile::load(file).map_err(|d| anyhow::anyhow!("{d}"))?,
         None => TweakFile::default(),
@@ -60,40 +83,81 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     // (timings then from a fixed cost per f-evaluation, so exports are reproducible).
     crate::widgets::work_precision::DETERMINISTIC.store(true, std::sync::atomic::Ordering::Relaxed);
     if args.data {
-        let files = super::export_data::write_data(&deck, &args.out, &tweaks)?;
+        let Some(out) = &args.out else {
+            anyhow::bail!("--data writes CSV files into a folder: give one with --out DIR");
+        };
+        let files = super::export_data::write_data(&deck, out, &tweaks)?;
         eprintln!(
             "lectern: wrote the data of {} plot widgets to {}",
             files.len(),
-            args.out.display()
+            out.display()
         );
     }
     let mut renderer = OffscreenRenderer::new()?;
-    std::fs::create_dir_all(&args.out)
-        .with_context(|| format!("cannot create {}", args.out.display()))?;
+    if let Some(out) = &args.out {
+        std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
+    }
+    let mut handout = args.pdf.clone().map(|p| HandoutWriter::new(p, args.notes));
     let digits = deck.slides.len().to_string().len().max(2);
-    for index in 0..deck.slides.len() {
+    let mut failures = Vec::new();
+    for (index, slide) in deck.slides.iter().enumerate() {
         let mut state = SlideState::default();
         for problem in tweaks.apply(&deck, index, &mut state) {
             eprintln!("lectern: warning: {problem}");
         }
-        let image = renderer.render_slide(&deck, index, &mut state, args.size)?;
-        // e.g. a formula stopped at its time budget: the slide shows its source instead
+        let image = renderer.render_slide(&deck, index, &mut state, size)?;
         for problem in state.problems() {
-            eprintln!("lectern: warning: {problem}");
+            failures.push(format!(
+                "{}: slide {} ({:?}): {problem}",
+                path.display(),
+                index + 1,
+                slide.key()
+            ));
         }
-        let file = args.out.join(format!("slide-{:0digits$}.png", index + 1));
-        image
-            .save(&file)
-            .with_context(|| format!("cannot write {}", file.display()))?;
+        if let Some(out) = &args.out {
+            let file = out.join(format!("slide-{:0digits$}.png", index + 1));
+            image
+                .save(&file)
+                .with_context(|| format!("cannot write {}", file.display()))?;
+        }
+        if let Some(h) = &mut handout {
+            h.push(&image, slide).map_err(anyhow::Error::msg)?;
+        }
+    }
+    let mut wrote = Vec::new();
+    if let Some(out) = &args.out {
+        wrote.push(format!("{} PNGs to {}", deck.slides.len(), out.display()));
+    }
+    if let Some(h) = handout {
+        let (file, layout) = (h.path.clone(), h.layout);
+        let pages = h.finish(&deck.title).map_err(anyhow::Error::msg)?;
+        wrote.push(format!(
+            "a {pages}-page PDF ({layout:?}) to {}",
+            file.display()
+        ));
     }
     eprintln!(
-        "lectern: wrote {} slides of {} at {}x{} to {} ({})",
-        deck.slides.len(),
+        "lectern: wrote {} of {} at {}x{} ({})",
+        wrote.join(" and "),
         path.display(),
-        args.size[0],
-        args.size[1],
-        args.out.display(),
+        size[0],
+        size[1],
         renderer.adapter_name()
     );
-    Ok(())
+    report_failures(&failures, args.keep_going)
+}
+
+/// Lists every failure; an error (non-zero exit) when there is one, unless `keep_going`.
+fn report_failures(failures: &[String], keep_going: bool) -> anyhow::Result<()> {
+    for f in failures {
+        eprintln!("lectern: {f}");
+    }
+    match failures.len() {
+        0 => Ok(()),
+        _ if keep_going => Ok(()),
+        n => Err(anyhow::anyhow!(
+            "{n} problem(s) on the slides above (the files were written anyway; \
+             `lectern check` shows where, `--keep-going` exits 0)"
+        )),
+    }
 }

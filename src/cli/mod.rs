@@ -2,8 +2,10 @@
 
 pub mod bench;
 pub mod check;
+pub mod check_deck;
 pub mod export;
 pub mod export_data;
+pub mod export_pdf;
 pub mod inertia;
 pub mod present;
 pub mod render_scene;

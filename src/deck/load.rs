@@ -6,6 +6,7 @@ use std::path::Path;
 use super::widgets::{OdeSource, WidgetSpec};
 use super::{Deck, WidgetProblem, block_tree_path};
 use crate::diag::Diagnostic;
+use crate::ron_tree;
 
 /// Parses deck text; `file` only names the source in errors.
 pub fn parse_deck(text: &str, file: &Path) -> Result<Deck, Diagnostic> {
@@ -35,39 +36,41 @@ pub fn parse_deck_file(text: &str, path: &Path) -> Result<Deck, Diagnostic> {
 }
 
 /// What RON's types cannot say: a deck needs slides, ids must be unique (they keep the
-/// presenter's place and tweaks across reloads), budgets must be sensible numbers.
+/// presenter's place and tweaks across reloads), budgets must be sensible numbers. Each error
+/// points at the value at fault.
 fn validate(deck: &Deck, text: &str, file: &Path) -> Result<(), Diagnostic> {
+    let tree = ron_tree::parse(text).ok();
+    let at = |path: &str, message: String| {
+        Diagnostic::at_value(tree.as_ref(), text, file, path, message)
+    };
     if deck.slides.is_empty() {
-        return Err(Diagnostic::whole_file(file, "the deck has no slides"));
+        return Err(at("slides", "the deck has no slides".into()));
     }
     let mut seen: HashMap<&str, usize> = HashMap::new();
     for (i, slide) in deck.slides.iter().enumerate() {
-        if let Some(id) = slide.id.as_deref() {
-            if let Some(first) = seen.insert(id, i) {
-                let (line, col) = locate_nth(text, &format!("\"{id}\""), 1).unwrap_or((0, 0));
-                return Err(Diagnostic::new(
-                    file,
-                    line,
-                    col,
-                    format!(
-                        "slide id \"{id}\" is used by slides {} and {}; ids must be unique",
-                        first + 1,
-                        i + 1
-                    ),
-                ));
-            }
+        if let Some(id) = slide.id.as_deref()
+            && let Some(first) = seen.insert(id, i)
+        {
+            return Err(at(
+                &format!("slides[{i}].id"),
+                format!(
+                    "slide id \"{id}\" is used by slides {} and {}; ids must be unique",
+                    first + 1,
+                    i + 1
+                ),
+            ));
         }
-        if let Some(s) = slide.seconds {
-            if !s.is_finite() || s < 0.0 {
-                return Err(Diagnostic::whole_file(
-                    file,
-                    format!(
-                        "slide {} (\"{}\"): seconds must be a non-negative number, got {s}",
-                        i + 1,
-                        slide.title
-                    ),
-                ));
-            }
+        if let Some(s) = slide.seconds
+            && (!s.is_finite() || s < 0.0)
+        {
+            return Err(at(
+                &format!("slides[{i}].seconds"),
+                format!(
+                    "slide {} (\"{}\"): seconds must be a non-negative number, got {s}",
+                    i + 1,
+                    slide.title
+                ),
+            ));
         }
     }
     Ok(())
@@ -144,15 +147,6 @@ fn at_token(text: &str, mut d: Diagnostic) -> Diagnostic {
     d
 }
 
-/// 1-based line and column of the `nth` (0-based) occurrence of `needle`.
-fn locate_nth(text: &str, needle: &str, nth: usize) -> Option<(usize, usize)> {
-    let offset = text.match_indices(needle).nth(nth)?.0;
-    let before = &text[..offset];
-    let line = before.matches('\n').count() + 1;
-    let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
-    Some((line, col))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -176,5 +170,15 @@ mod tests {
         let text = "(title: \"x\", slides: [\n (id: \"a\", title: \"1\"),\n  (id: \"a\", title: \"2\"),\n])";
         let err = parse_deck(text, Path::new("d.ron")).unwrap_err();
         assert_eq!((err.line, err.col), (3, 8), "{err}");
+    }
+
+    #[test]
+    fn semantic_errors_point_at_the_value() {
+        let text =
+            "(title: \"x\", slides: [\n (title: \"1\"),\n  (title: \"2\", seconds: -3.0),\n])";
+        let err = parse_deck(text, Path::new("d.ron")).unwrap_err();
+        assert_eq!((err.line, err.col), (3, 25), "{err}");
+        let err = parse_deck("(title: \"x\",\n slides: [])", Path::new("d.ron")).unwrap_err();
+        assert_eq!((err.line, err.col), (2, 10), "{err}");
     }
 }

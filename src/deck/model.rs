@@ -157,6 +157,10 @@ pub enum Layout {
     Title,
 }
 
+/// The widths an image block may ask for, as a fraction of the canvas (the slide clamps to
+/// them; `lectern check` reports a width outside).
+pub const IMAGE_WIDTH_RANGE: std::ops::RangeInclusive<f32> = 0.05..=1.0;
+
 /// One piece of slide content, laid out top to bottom.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub enum Block {

@@ -506,4 +506,26 @@ mod tests {
         let d = Problem::parse(&OSC.replace("\"v\"]", "\"x\"]"), "p.ron").unwrap_err();
         assert!(d.message.contains("twice"), "{d}");
     }
+
+    #[test]
+    fn semantic_errors_point_at_the_value() {
+        let at = |text: String| {
+            let d = Problem::parse(&text, "p.ron").unwrap_err();
+            (d.line, d.col)
+        };
+        // `vars: ["x", "v"]` on line 3: the second name is at column 17
+        assert_eq!(at(OSC.replace("\"v\"]", "\"x\"]")), (3, 17));
+        assert_eq!(
+            at(OSC.replace("[\"x\", \"v\"]", "[\"x\", \"2v\"]")),
+            (3, 17)
+        );
+        // the params key `"sin"` on line 5, column 14
+        assert_eq!(at(OSC.replace("\"w\":", "\"sin\":")), (5, 14));
+        assert_eq!(at(OSC.replace("[1.0, 0.0]", "[1.0]")), (6, 14));
+        assert_eq!(at(OSC.replace("t0: 0.0", "t0: NaN")), (7, 9));
+        assert_eq!(
+            at(OSC.replace("rhs: [\"v\", \"-w*w*x\"]", "rhs: [\"v\"]")),
+            (4, 10)
+        );
+    }
 }

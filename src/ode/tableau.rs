@@ -112,50 +112,75 @@ impl Tableau {
         Self::parse(&text, path)
     }
 
-    /// Parses and validates tableau text; `path` only names the file in errors.
+    /// Parses and validates tableau text; `path` only names the file in errors, which point
+    /// at the value at fault (`a[3][3]`, `c`, …).
     pub fn parse(text: &str, path: impl AsRef<Path>) -> Result<Self, Diagnostic> {
         let path = path.as_ref();
         let tab: Tableau = ron::from_str(text).map_err(|e| Diagnostic::from_ron(path, &e))?;
-        tab.validate()
-            .map_err(|m| Diagnostic::whole_file(path, m))?;
+        tab.validate_at().map_err(|(at, m)| {
+            let tree = crate::ron_tree::parse(text).ok();
+            Diagnostic::at_value(tree.as_ref(), text, path, &at, m)
+        })?;
         Ok(tab)
     }
 
     /// Checks sizes, finiteness and explicitness (`a` strictly lower triangular).
     pub fn validate(&self) -> Result<(), String> {
+        self.validate_at().map_err(|(_, m)| m)
+    }
+
+    /// Like [`validate`](Self::validate), with the path of the value at fault (`a[2][3]`,
+    /// `b`, `c[1]`; 0-based like [`crate::ron_tree`] paths, 1-based in the message).
+    pub fn validate_at(&self) -> Result<(), (String, String)> {
         let s = self.b.len();
         if s == 0 {
-            return Err("tableau has no stages (b is empty)".into());
+            return Err(("b".into(), "tableau has no stages (b is empty)".into()));
         }
         if self.c.len() != s {
-            return Err(format!("c has {} entries but b has {s}", self.c.len()));
+            return Err((
+                "c".into(),
+                format!("c has {} entries but b has {s}", self.c.len()),
+            ));
         }
         if self.a.len() != s {
-            return Err(format!("a has {} rows but b has {s} entries", self.a.len()));
+            return Err((
+                "a".into(),
+                format!("a has {} rows but b has {s} entries", self.a.len()),
+            ));
         }
         for (i, row) in self.a.iter().enumerate() {
             if row.len() != s {
-                return Err(format!(
-                    "row {} of a has {} entries, expected {s}",
-                    i + 1,
-                    row.len()
+                return Err((
+                    format!("a[{i}]"),
+                    format!("row {} of a has {} entries, expected {s}", i + 1, row.len()),
                 ));
             }
             for (j, &v) in row.iter().enumerate() {
                 if !v.is_finite() {
-                    return Err(format!("a[{}][{}] is not finite", i + 1, j + 1));
+                    return Err((
+                        format!("a[{i}][{j}]"),
+                        format!("a[{}][{}] is not finite", i + 1, j + 1),
+                    ));
                 }
                 if j >= i && v != 0.0 {
-                    return Err(format!(
-                        "a[{}][{}] = {v} is on or above the diagonal: only explicit methods are supported",
-                        i + 1,
-                        j + 1
+                    return Err((
+                        format!("a[{i}][{j}]"),
+                        format!(
+                            "a[{}][{}] = {v} is on or above the diagonal: only explicit methods are supported",
+                            i + 1,
+                            j + 1
+                        ),
                     ));
                 }
             }
         }
-        if let Some(v) = self.b.iter().chain(&self.c).find(|v| !v.is_finite()) {
-            return Err(format!("b or c holds a non-finite value {v}"));
+        for (name, values) in [("b", &self.b), ("c", &self.c)] {
+            if let Some(k) = values.iter().position(|v| !v.is_finite()) {
+                return Err((
+                    format!("{name}[{k}]"),
+                    format!("{name}[{}] = {} is not finite", k + 1, values[k]),
+                ));
+            }
         }
         Ok(())
     }
@@ -248,6 +273,21 @@ mod tests {
         let mut t = Tableau::heun();
         t.c.pop();
         assert!(t.validate().is_err());
+    }
+
+    #[test]
+    fn errors_in_a_file_point_at_the_value() {
+        let text = "(\n  name: \"x\",\n  a: [[0.0, 0.0],\n      [1.0, 0.5]],\n  b: [0.5, 0.5],\n  c: [0.0, NaN],\n)";
+        let d = Tableau::parse(text, "t.ron").unwrap_err();
+        assert_eq!((d.line, d.col), (4, 13), "{d}");
+        assert!(d.message.contains("a[2][2]"), "{d}");
+        let d = Tableau::parse(&text.replace("0.5]],", "0.0]],"), "t.ron").unwrap_err();
+        assert_eq!(
+            (d.line, d.col, d.message.as_str()),
+            (6, 12, "c[2] = NaN is not finite")
+        );
+        let d = Tableau::parse(&text.replace("[0.0, NaN]", "[0.0]"), "t.ron").unwrap_err();
+        assert_eq!((d.line, d.col), (6, 6), "{d}");
         let d = Tableau::parse(
             "(name: \"x\", a: [[0.0]], b: [1.0], c: [0.0, 1.0])",
             "t.ron",

@@ -1,5 +1,5 @@
 //! Reading a scene file: RON parse errors keep their `line:col`; range checks name the field and
-//! the bad value, and point at the field's first occurrence in the text when it can be found.
+//! the bad value, and point at the value itself (found again in a [`crate::ron_tree`]).
 
 use std::path::Path;
 
@@ -10,9 +10,9 @@ use super::model::{MAX_FISH, MAX_OBJECTS, MAX_WAVES, Object, Scene, Shape, WATER
 /// Parses and validates scene text; `file` only names the source in diagnostics.
 pub fn parse_scene(text: &str, file: &Path) -> Result<Scene, Diagnostic> {
     let scene: Scene = ron::from_str(text).map_err(|e| Diagnostic::from_ron(file, &e))?;
-    validate(&scene).map_err(|(field, msg)| {
-        let (line, col) = locate(text, field, &msg);
-        Diagnostic::new(file, line, col, msg)
+    validate(&scene).map_err(|(at, msg)| {
+        let tree = crate::ron_tree::parse(text).ok();
+        Diagnostic::at_value(tree.as_ref(), text, file, &at, msg)
     })?;
     Ok(scene)
 }
@@ -29,73 +29,21 @@ pub fn check_file(path: &Path) -> Vec<Diagnostic> {
     load_scene(path).err().into_iter().collect()
 }
 
-/// 1-based position of the `field:` the error is about, or (0, 0). Messages say
-/// `field = VALUE`; of all `field:` occurrences (comments skipped) the one whose written value
-/// equals VALUE wins (the third object's `density`, not the first), else the first one.
-fn locate(text: &str, field: &str, msg: &str) -> (usize, usize) {
-    let needle = format!("{field}:");
-    let wanted = value_in_message(msg, field);
-    let mut first = None;
-    for (i, line) in text.lines().enumerate() {
-        let mut from = 0;
-        while let Some(c) = line[from..].find(&needle).map(|c| c + from) {
-            from = c + needle.len();
-            let before = &line[..c];
-            // skip comments, and longer names ending in `field` (`fish_scale` for `scale`)
-            if before.contains("//")
-                || before
-                    .chars()
-                    .last()
-                    .is_some_and(|ch| ch.is_alphanumeric() || ch == '_')
-            {
-                continue;
-            }
-            let pos = (i + 1, c + 1);
-            first.get_or_insert(pos);
-            match &wanted {
-                Some(w) if same_value(first_token(&line[from..]), w) => return pos,
-                Some(_) => {}
-                None => return pos,
-            }
-        }
-    }
-    first.unwrap_or((0, 0))
+/// The path of the value at fault (`water.waves[2].speed`) and the message.
+type Invalid = (String, String);
+
+fn check(ok: bool, at: impl Into<String>, msg: impl FnOnce() -> String) -> Result<(), Invalid> {
+    if ok { Ok(()) } else { Err((at.into(), msg())) }
 }
 
-/// `VALUE` in a message containing `field = VALUE` (up to a space, comma or colon).
-fn value_in_message(msg: &str, field: &str) -> Option<String> {
-    let at = msg.find(&format!("{field} = "))? + field.len() + 3;
-    let v: String = msg[at..]
-        .chars()
-        .take_while(|c| !c.is_whitespace() && *c != ',' && *c != ':')
-        .collect();
-    (!v.is_empty()).then_some(v)
-}
-
-/// The written value after `field:`, up to the next separator.
-fn first_token(rest: &str) -> &str {
-    let rest = rest.trim_start();
-    let end = rest
-        .find(|c: char| c.is_whitespace() || c == ',' || c == ')')
-        .unwrap_or(rest.len());
-    &rest[..end]
-}
-
-/// Same text, or the same number however written (`7800` is `7800.0`; NaN is NaN).
-fn same_value(written: &str, wanted: &str) -> bool {
-    if written == wanted {
-        return true;
-    }
-    match (written.parse::<f64>(), wanted.parse::<f64>()) {
-        (Ok(a), Ok(b)) => a == b || (a.is_nan() && b.is_nan()) || (a as f32) == (b as f32),
-        _ => false,
-    }
-}
-
-type Invalid = (&'static str, String);
-
-fn check(ok: bool, field: &'static str, msg: impl FnOnce() -> String) -> Result<(), Invalid> {
-    if ok { Ok(()) } else { Err((field, msg())) }
+/// The path of the first of `fields` (under `parent`) whose values fail `ok`, else the first.
+fn first_bad(parent: &str, fields: &[(&str, &[f32])], ok: impl Fn(f32) -> bool) -> String {
+    let name = fields
+        .iter()
+        .find(|(_, v)| !v.iter().all(|&x| ok(x)))
+        .or(fields.first())
+        .map_or("", |(n, _)| n);
+    format!("{parent}.{name}")
 }
 
 fn finite(v: &[f32]) -> bool {
@@ -106,46 +54,54 @@ fn in_range(v: f32, lo: f32, hi: f32) -> bool {
     v.is_finite() && v >= lo && v <= hi
 }
 
-/// Range checks; returns the field name to locate and the message.
+/// Range checks; returns the path of the value at fault and the message.
 fn validate(s: &Scene) -> Result<(), Invalid> {
     let c = &s.camera;
     check(
         finite(&c.target) && in_range(c.distance, 0.1, 1e4),
-        "distance",
+        if finite(&c.target) {
+            "camera.distance"
+        } else {
+            "camera.target"
+        },
         || format!("camera.distance = {} must be in 0.1..=10000 m", c.distance),
     )?;
-    check(in_range(c.fov_deg, 5.0, 150.0), "fov_deg", || {
+    check(in_range(c.fov_deg, 5.0, 150.0), "camera.fov_deg", || {
         format!("camera.fov_deg = {} must be in 5..=150 degrees", c.fov_deg)
     })?;
-    check(in_range(c.pitch_deg, -89.0, 89.0), "pitch_deg", || {
-        format!(
-            "camera.pitch_deg = {} must be in -89..=89 degrees",
-            c.pitch_deg
-        )
-    })?;
-    check(c.yaw_deg.is_finite(), "yaw_deg", || {
+    check(
+        in_range(c.pitch_deg, -89.0, 89.0),
+        "camera.pitch_deg",
+        || {
+            format!(
+                "camera.pitch_deg = {} must be in -89..=89 degrees",
+                c.pitch_deg
+            )
+        },
+    )?;
+    check(c.yaw_deg.is_finite(), "camera.yaw_deg", || {
         "camera.yaw_deg must be finite".into()
     })?;
 
     let d = s.sun.direction;
     check(
         finite(&d) && d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > 1e-8 && d[1] > 0.0,
-        "direction",
+        "sun.direction",
         || format!("sun.direction = {d:?} must be a non-zero vector pointing above the horizon"),
     )?;
     check(
         finite(&s.sun.color) && s.sun.color.iter().all(|&x| x >= 0.0),
-        "color",
+        "sun.color",
         || "sun.color must be finite and non-negative".into(),
     )?;
-    check(in_range(s.sun.intensity, 0.0, 1e3), "intensity", || {
+    check(in_range(s.sun.intensity, 0.0, 1e3), "sun.intensity", || {
         format!("sun.intensity = {} must be in 0..=1000", s.sun.intensity)
     })?;
 
     let k = &s.sky;
     check(
         k.cube_size.is_power_of_two() && (16..=1024).contains(&k.cube_size),
-        "cube_size",
+        "sky.cube_size",
         || {
             format!(
                 "sky.cube_size = {} must be a power of two in 16..=1024",
@@ -153,25 +109,37 @@ fn validate(s: &Scene) -> Result<(), Invalid> {
             )
         },
     )?;
-    check(in_range(k.sun_size_deg, 0.05, 20.0), "sun_size_deg", || {
-        format!("sky.sun_size_deg = {} must be in 0.05..=20", k.sun_size_deg)
-    })?;
+    check(
+        in_range(k.sun_size_deg, 0.05, 20.0),
+        "sky.sun_size_deg",
+        || format!("sky.sun_size_deg = {} must be in 0.05..=20", k.sun_size_deg),
+    )?;
     check(
         finite(&k.zenith_color) && finite(&k.horizon_color) && finite(&k.ground_color),
-        "sky",
+        first_bad(
+            "sky",
+            &[
+                ("zenith_color", &k.zenith_color),
+                ("horizon_color", &k.horizon_color),
+                ("ground_color", &k.ground_color),
+            ],
+            f32::is_finite,
+        ),
         || "sky colours must be finite".into(),
     )?;
 
     let w = &s.water;
-    check(in_range(w.size, 1.0, 1e4), "size", || {
+    check(in_range(w.size, 1.0, 1e4), "water.size", || {
         format!("water.size = {} must be in 1..=10000 m", w.size)
     })?;
-    check((2..=1024).contains(&w.resolution), "resolution", || {
-        format!("water.resolution = {} must be in 2..=1024", w.resolution)
-    })?;
+    check(
+        (2..=1024).contains(&w.resolution),
+        "water.resolution",
+        || format!("water.resolution = {} must be in 2..=1024", w.resolution),
+    )?;
     check(
         w.absorption.iter().all(|&a| in_range(a, 0.0, 100.0)),
-        "absorption",
+        "water.absorption",
         || {
             format!(
                 "water.absorption = {:?} must be in 0..=100 per metre",
@@ -179,7 +147,7 @@ fn validate(s: &Scene) -> Result<(), Invalid> {
             )
         },
     )?;
-    check(w.waves.len() <= MAX_WAVES, "waves", || {
+    check(w.waves.len() <= MAX_WAVES, "water.waves", || {
         format!(
             "water.waves has {} waves; at most {MAX_WAVES} are supported",
             w.waves.len()
@@ -187,33 +155,51 @@ fn validate(s: &Scene) -> Result<(), Invalid> {
     })?;
     for (i, wave) in w.waves.iter().enumerate() {
         let dl = wave.direction[0].hypot(wave.direction[1]);
-        check(dl.is_finite() && dl > 1e-6, "direction", || {
-            format!("water.waves[{i}].direction must be a non-zero 2D vector")
-        })?;
-        check(in_range(wave.wavelength, 0.01, 1e4), "wavelength", || {
-            format!(
-                "water.waves[{i}].wavelength = {} must be in 0.01..=10000 m",
-                wave.wavelength
-            )
-        })?;
-        check(in_range(wave.amplitude, 0.0, 100.0), "amplitude", || {
-            format!(
-                "water.waves[{i}].amplitude = {} must be in 0..=100 m",
-                wave.amplitude
-            )
-        })?;
-        check(in_range(wave.steepness, 0.0, 1.0), "steepness", || {
-            format!(
-                "water.waves[{i}].steepness = {} must be in 0..=1",
-                wave.steepness
-            )
-        })?;
-        check(in_range(wave.speed, -1e3, 1e3), "speed", || {
-            format!(
-                "water.waves[{i}].speed = {} must be finite and below 1000 m/s",
-                wave.speed
-            )
-        })?;
+        check(
+            dl.is_finite() && dl > 1e-6,
+            format!("water.waves[{i}].direction"),
+            || format!("water.waves[{i}].direction must be a non-zero 2D vector"),
+        )?;
+        check(
+            in_range(wave.wavelength, 0.01, 1e4),
+            format!("water.waves[{i}].wavelength"),
+            || {
+                format!(
+                    "water.waves[{i}].wavelength = {} must be in 0.01..=10000 m",
+                    wave.wavelength
+                )
+            },
+        )?;
+        check(
+            in_range(wave.amplitude, 0.0, 100.0),
+            format!("water.waves[{i}].amplitude"),
+            || {
+                format!(
+                    "water.waves[{i}].amplitude = {} must be in 0..=100 m",
+                    wave.amplitude
+                )
+            },
+        )?;
+        check(
+            in_range(wave.steepness, 0.0, 1.0),
+            format!("water.waves[{i}].steepness"),
+            || {
+                format!(
+                    "water.waves[{i}].steepness = {} must be in 0..=1",
+                    wave.steepness
+                )
+            },
+        )?;
+        check(
+            in_range(wave.speed, -1e3, 1e3),
+            format!("water.waves[{i}].speed"),
+            || {
+                format!(
+                    "water.waves[{i}].speed = {} must be finite and below 1000 m/s",
+                    wave.speed
+                )
+            },
+        )?;
     }
 
     check(
@@ -221,26 +207,27 @@ fn validate(s: &Scene) -> Result<(), Invalid> {
         "materials",
         || format!("scene needs 1..=64 materials, found {}", s.materials.len()),
     )?;
-    for m in &s.materials {
+    for (k, m) in s.materials.iter().enumerate() {
         let name = &m.name;
+        let at = |field: &str| format!("materials[{k}].{field}");
         check(
             finite(&m.base_color) && m.base_color.iter().all(|&x| (0.0..=1.0).contains(&x)),
-            "base_color",
+            at("base_color"),
             || format!("material {name:?}: base_color must be in 0..=1"),
         )?;
-        check(in_range(m.metallic, 0.0, 1.0), "metallic", || {
+        check(in_range(m.metallic, 0.0, 1.0), at("metallic"), || {
             format!(
                 "material {name:?}: metallic = {} must be in 0..=1",
                 m.metallic
             )
         })?;
-        check(in_range(m.roughness, 0.0, 1.0), "roughness", || {
+        check(in_range(m.roughness, 0.0, 1.0), at("roughness"), || {
             format!(
                 "material {name:?}: roughness = {} must be in 0..=1",
                 m.roughness
             )
         })?;
-        check(in_range(m.reflectance, 0.0, 1.0), "reflectance", || {
+        check(in_range(m.reflectance, 0.0, 1.0), at("reflectance"), || {
             format!(
                 "material {name:?}: reflectance = {} must be in 0..=1",
                 m.reflectance
@@ -248,7 +235,7 @@ fn validate(s: &Scene) -> Result<(), Invalid> {
         })?;
         check(
             in_range(m.normal_strength, 0.0, 10.0),
-            "normal_strength",
+            at("normal_strength"),
             || {
                 format!(
                     "material {name:?}: normal_strength = {} must be in 0..=10",
@@ -256,7 +243,7 @@ fn validate(s: &Scene) -> Result<(), Invalid> {
                 )
             },
         )?;
-        check(in_range(m.uv_scale, 1e-3, 1e3), "uv_scale", || {
+        check(in_range(m.uv_scale, 1e-3, 1e3), at("uv_scale"), || {
             format!(
                 "material {name:?}: uv_scale = {} must be in 0.001..=1000",
                 m.uv_scale
@@ -270,13 +257,18 @@ fn validate(s: &Scene) -> Result<(), Invalid> {
             s.objects.len()
         )
     })?;
-    for o in &s.objects {
-        check(s.material_index(o.material()).is_some(), "material", || {
-            format!(
-                "material = {:?}: unknown material (no material has that name)",
-                o.material()
-            )
-        })?;
+    for (k, o) in s.objects.iter().enumerate() {
+        let at = |field: &str| format!("objects[{k}].{field}");
+        check(
+            s.material_index(o.material()).is_some(),
+            at("material"),
+            || {
+                format!(
+                    "material = {:?}: unknown material (no material has that name)",
+                    o.material()
+                )
+            },
+        )?;
         match o {
             Object::Seabed {
                 size,
@@ -285,16 +277,16 @@ fn validate(s: &Scene) -> Result<(), Invalid> {
                 relief,
                 ..
             } => {
-                check(in_range(*size, 1.0, 1e4), "size", || {
+                check(in_range(*size, 1.0, 1e4), at("size"), || {
                     format!("Seabed.size = {size} must be in 1..=10000 m")
                 })?;
-                check(in_range(*depth, 0.1, 1e3), "depth", || {
+                check(in_range(*depth, 0.1, 1e3), at("depth"), || {
                     format!("Seabed.depth = {depth} must be in 0.1..=1000 m")
                 })?;
-                check((2..=1024).contains(resolution), "resolution", || {
+                check((2..=1024).contains(resolution), at("resolution"), || {
                     format!("Seabed.resolution = {resolution} must be in 2..=1024")
                 })?;
-                check(in_range(*relief, 0.0, 100.0), "relief", || {
+                check(in_range(*relief, 0.0, 100.0), at("relief"), || {
                     format!("Seabed.relief = {relief} must be in 0..=100 m")
                 })?;
             }
@@ -303,7 +295,11 @@ fn validate(s: &Scene) -> Result<(), Invalid> {
             } => {
                 check(
                     finite(position) && in_range(*radius, 0.01, 100.0),
-                    "radius",
+                    at(if finite(position) {
+                        "radius"
+                    } else {
+                        "position"
+                    }),
                     || format!("Rock.radius = {radius} must be in 0.01..=100 m"),
                 )?;
             }
@@ -314,12 +310,18 @@ fn validate(s: &Scene) -> Result<(), Invalid> {
                 tilt_deg,
                 ..
             } => {
-                check(finite(position) && tilt_deg.is_finite(), "position", || {
-                    "Floating position and tilt_deg must be finite".into()
-                })?;
+                check(
+                    finite(position) && tilt_deg.is_finite(),
+                    at(if finite(position) {
+                        "tilt_deg"
+                    } else {
+                        "position"
+                    }),
+                    || "Floating position and tilt_deg must be finite".into(),
+                )?;
                 check(
                     in_range(*density, 1.0, WATER_DENSITY - 1.0),
-                    "density",
+                    at("density"),
                     || {
                         format!(
                             "Floating density = {density} kg/m³ must be in 1..{WATER_DENSITY} \
@@ -334,7 +336,7 @@ fn validate(s: &Scene) -> Result<(), Invalid> {
                 };
                 check(
                     dims.iter().all(|&x| in_range(x, 0.01, 100.0)),
-                    "shape",
+                    at("shape"),
                     || format!("Floating shape {shape:?}: sizes must be in 0.01..=100 m"),
                 )?;
             }
@@ -342,7 +344,7 @@ fn validate(s: &Scene) -> Result<(), Invalid> {
     }
 
     let f = &s.school;
-    check(f.count <= MAX_FISH, "count", || {
+    check(f.count <= MAX_FISH, "school.count", || {
         format!(
             "school.count = {} is too many fish: at most {MAX_FISH}",
             f.count
@@ -352,7 +354,11 @@ fn validate(s: &Scene) -> Result<(), Invalid> {
         in_range(f.min_speed, 0.0, 100.0)
             && in_range(f.max_speed, 0.0, 100.0)
             && f.min_speed <= f.max_speed,
-        "max_speed",
+        if in_range(f.min_speed, 0.0, 100.0) {
+            "school.max_speed"
+        } else {
+            "school.min_speed"
+        },
         || {
             format!(
                 "school speeds must satisfy 0 <= min_speed ({}) <= max_speed ({}) <= 100",
@@ -360,16 +366,28 @@ fn validate(s: &Scene) -> Result<(), Invalid> {
             )
         },
     )?;
-    check(in_range(f.fish_scale, 0.001, 10.0), "fish_scale", || {
-        format!(
-            "school.fish_scale = {} must be in 0.001..=10 m",
-            f.fish_scale
-        )
-    })?;
+    check(
+        in_range(f.fish_scale, 0.001, 10.0),
+        "school.fish_scale",
+        || {
+            format!(
+                "school.fish_scale = {} must be in 0.001..=10 m",
+                f.fish_scale
+            )
+        },
+    )?;
     let radii = [f.separation_radius, f.neighbour_radius, f.flee_radius];
     check(
         radii.iter().all(|&r| in_range(r, 0.0, 1e3)),
-        "neighbour_radius",
+        first_bad(
+            "school",
+            &[
+                ("separation_radius", &[f.separation_radius]),
+                ("neighbour_radius", &[f.neighbour_radius]),
+                ("flee_radius", &[f.flee_radius]),
+            ],
+            |r| in_range(r, 0.0, 1e3),
+        ),
         || "school radii must be in 0..=1000 m".into(),
     )?;
     let weights = [
@@ -381,31 +399,49 @@ fn validate(s: &Scene) -> Result<(), Invalid> {
     ];
     check(
         weights.iter().all(|&w| in_range(w, -1e3, 1e3)),
-        "weight",
+        first_bad(
+            "school",
+            &[
+                ("separation_weight", &[f.separation_weight]),
+                ("alignment_weight", &[f.alignment_weight]),
+                ("cohesion_weight", &[f.cohesion_weight]),
+                ("bounds_weight", &[f.bounds_weight]),
+                ("flee_weight", &[f.flee_weight]),
+            ],
+            |w| in_range(w, -1e3, 1e3),
+        ),
         || "school weights must be finite".into(),
     )?;
 
     let m = &s.simulation;
-    check(in_range(m.dt_secs, 1e-4, 0.1), "dt_secs", || {
+    check(in_range(m.dt_secs, 1e-4, 0.1), "simulation.dt_secs", || {
         format!(
             "simulation.dt_secs = {} must be in 0.0001..=0.1 s",
             m.dt_secs
         )
     })?;
-    check(in_range(m.body_h_secs, 1e-3, 0.5), "body_h_secs", || {
-        format!(
-            "simulation.body_h_secs = {} must be in 0.001..=0.5 s",
-            m.body_h_secs
-        )
-    })?;
+    check(
+        in_range(m.body_h_secs, 1e-3, 0.5),
+        "simulation.body_h_secs",
+        || {
+            format!(
+                "simulation.body_h_secs = {} must be in 0.001..=0.5 s",
+                m.body_h_secs
+            )
+        },
+    )?;
     check(
         in_range(m.linear_drag_per_sec, 0.0, 100.0) && in_range(m.angular_drag_per_sec, 0.0, 100.0),
-        "linear_drag_per_sec",
+        if in_range(m.linear_drag_per_sec, 0.0, 100.0) {
+            "simulation.angular_drag_per_sec"
+        } else {
+            "simulation.linear_drag_per_sec"
+        },
         || "simulation drags must be in 0..=100 per second".into(),
     )?;
     check(
         in_range(m.school_half_width, 0.5, 1e3),
-        "school_half_width",
+        "simulation.school_half_width",
         || {
             format!(
                 "simulation.school_half_width = {} must be in 0.5..=1000 m",

@@ -299,6 +299,12 @@ fn loop_ui(ui: &mut egui::Ui, n: &LoopNumbers, steps: u64) {
 }
 
 impl SlideWidget for SimulationLoop {
+    fn problems(&self) -> Vec<String> {
+        match &self.world {
+            Some((_, Err(e))) => vec![e.clone()],
+            _ => Vec::new(),
+        }
+    }
     fn ui(&mut self, ui: &mut egui::Ui) {
         style::projector_text(ui);
         ui.set_max_width(ui.available_width());

@@ -1,0 +1,330 @@
+//! `lectern check` for one deck: everything its slides will load when presented, through the
+//! code the app uses, each problem at the deck's line and column of the value at fault.
+//!
+//! - the deck parses and validates ([`crate::deck::parse_deck_file`]);
+//! - every formula typesets through the bounded typesetting pool the window uses
+//!   ([`crate::math::deck`]); a Typst error points at the faulty character inside the `src`
+//!   string, a LaTeX one at the formula's start (Typst's column is in mitex's converted text,
+//!   which the lecturer never wrote);
+//! - every file the deck names (pictures, tableau files, the simulation loop's scene) is inside
+//!   the project, exists and loads ([`crate::deck::files`]), reported at the path string;
+//! - what the widgets would otherwise clamp or refuse silently: image widths in range, tableaux
+//!   written inline valid (at their values), the simulation loop's body present;
+//! - bookmarks name a slide the deck has, with a key 1…9.
+
+use std::collections::HashMap;
+use std::path::Path;
+
+use crate::deck::{Block, Deck, IMAGE_WIDTH_RANGE, parse_deck_file};
+use crate::diag::Diagnostic;
+use crate::math::{MathError, MathSyntax};
+use crate::ron_tree::{self, Node};
+use crate::widgets::WidgetSpec;
+
+/// Formulas are typeset at this many pixels per em (as `math::deck::check_formulas` does).
+const CHECK_EM_PX: f32 = 40.0;
+
+/// Checks decks; keeps the verdict on each formula, so a formula written twice (or a deck
+/// checked again) is typeset once.
+#[derive(Default)]
+pub struct DeckChecker {
+    formulas: HashMap<(String, MathSyntax), Result<(), MathError>>,
+    /// Typeset formulas (default). Off only where a test needs thousands of decks per second.
+    pub skip_typesetting: bool,
+}
+
+/// One deck's result: the deck when it parsed, and every problem found.
+pub struct DeckCheck {
+    pub deck: Option<Deck>,
+    pub problems: Vec<Diagnostic>,
+}
+
+impl DeckChecker {
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Reads and checks the deck at `file`.
+    pub fn check_file(&mut self, file: &Path) -> DeckCheck {
+        match std::fs::read_to_string(file) {
+            Ok(text) => self.check_text(&text, file),
+            Err(e) => DeckCheck {
+                deck: None,
+                problems: vec![Diagnostic::whole_file(file, format!("cannot read: {e}"))],
+            },
+        }
+    }
+
+    /// Checks deck `text`, read from `file` (the file also anchors relative paths).
+    pub fn check_text(&mut self, text: &str, file: &Path) -> DeckCheck {
+        let deck = match parse_deck_file(text, file) {
+            Ok(deck) => deck,
+            Err(d) => {
+                return DeckCheck {
+                    deck: None,
+                    problems: vec![d],
+                };
+            }
+        };
+        let tree = ron_tree::parse(text).ok();
+        let mut walk = Walk {
+            text,
+            file,
+            tree: tree.as_ref(),
+            problems: crate::deck::files::check_deck_files(file, text, &deck),
+        };
+        // equations and tableau files the widgets name, compiled while the deck loaded
+        (walk.problems).extend(deck.widget_problems.iter().map(|p| p.diagnostic.clone()));
+        self.formulas(&mut walk, &deck);
+        for (i, slide) in deck.slides.iter().enumerate() {
+            walk.blocks(&slide.body, &format!("slides[{i}].body"));
+        }
+        for (i, b) in deck.bookmarks.iter().enumerate() {
+            if !(1..=9).contains(&b.key) {
+                walk.at(
+                    &format!("bookmarks[{i}].key"),
+                    format!("bookmark key {} must be 1…9", b.key),
+                );
+            }
+            if deck.find(&b.slide).is_none() {
+                walk.at(
+                    &format!("bookmarks[{i}].slide"),
+                    format!(
+                        "bookmark {}: the deck has no slide with id or title {:?}",
+                        b.key, b.slide
+                    ),
+                );
+            }
+        }
+        walk.problems.sort_by_key(|d| (d.line, d.col));
+        DeckCheck {
+            problems: walk.problems,
+            deck: Some(deck),
+        }
+    }
+
+    /// Typesets every formula not seen before through the pool (all queued first, so both
+    /// workers stay busy), and reports each that fails at its place.
+    fn formulas(&mut self, walk: &mut Walk, deck: &Deck) {
+        let all = crate::math::deck::formulas(deck, None);
+        let new: Vec<_> = all
+            .iter()
+            .filter(|f| !self.formulas.contains_key(&(f.src.to_owned(), f.syntax)))
+            .filter(|_| !self.skip_typesetting)
+            .map(|f| {
+                let req = f.request(CHECK_EM_PX, [0, 0, 0, 255]);
+                (f, crate::math::pool().submit(req, true, true, None))
+            })
+            .collect();
+        for (f, job) in new {
+            let verdict = job.wait().map(|_| ());
+            self.formulas.insert((f.src.to_owned(), f.syntax), verdict);
+        }
+        for f in &all {
+            if let Some(Err(e)) = self.formulas.get(&(f.src.to_owned(), f.syntax)) {
+                let d = crate::math::deck::diagnostic(walk.file, walk.text, f, e);
+                walk.push(d);
+            }
+        }
+    }
+}
+
+/// Where the walk is: the deck's text, its tree, and the problems so far.
+struct Walk<'a> {
+    text: &'a str,
+    file: &'a Path,
+    tree: Option<&'a Node>,
+    problems: Vec<Diagnostic>,
+}
+
+impl Walk<'_> {
+    fn node(&self, path: &str) -> Option<&Node> {
+        self.tree.and_then(|t| t.at(path))
+    }
+
+    fn push(&mut self, d: Diagnostic) {
+        self.problems.push(d);
+    }
+
+    /// A problem at the value `path`.
+    fn at(&mut self, path: &str, message: String) {
+        let d = Diagnostic::at_value(self.tree, self.text, self.file, path, message);
+        self.problems.push(d);
+    }
+
+    /// What the widgets and blocks would clamp or refuse silently (files and formulas are
+    /// checked beforehand, by the app's own modules).
+    fn blocks(&mut self, blocks: &[Block], at: &str) {
+        for (j, block) in blocks.iter().enumerate() {
+            let at = format!("{at}[{j}]");
+            match block {
+                Block::Image { width: Some(w), .. } if !IMAGE_WIDTH_RANGE.contains(w) => self.at(
+                    &format!("{at}.width"),
+                    format!(
+                        "image width {w} is outside {}..={} (a fraction of the slide's width)",
+                        IMAGE_WIDTH_RANGE.start(),
+                        IMAGE_WIDTH_RANGE.end()
+                    ),
+                ),
+                Block::Widget(spec) => self.widget(spec, &at),
+                Block::Columns(cols) => {
+                    for (c, col) in cols.iter().enumerate() {
+                        self.blocks(col, &format!("{at}[{c}]"));
+                    }
+                }
+                _ => {}
+            }
+        }
+    }
+
+    fn widget(&mut self, spec: &WidgetSpec, at: &str) {
+        match spec {
+            WidgetSpec::SimulationLoop(s) => self.simulation_body(&s.scene, s.body, at),
+            WidgetSpec::Stability(s) => {
+                for (k, t) in s.tableaux.iter().enumerate() {
+                    if let Err((value, m)) = t.validate_at() {
+                        self.at(
+                            &format!("{at}.tableaux[{k}].{value}"),
+                            format!("tableau: {m}"),
+                        );
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+
+    /// The simulation loop's body must exist in its scene (the scene file itself is checked
+    /// with the deck's files; a scene that does not load is reported there).
+    fn simulation_body(&mut self, written: &str, body: usize, at: &str) {
+        let Ok(full) = crate::paths::resolve_for(self.file, written) else {
+            return;
+        };
+        let Ok(scene) = crate::scene::load_scene(&full) else {
+            return;
+        };
+        let level = scene.water.level;
+        let floating = (scene.objects.iter().enumerate())
+            .filter(|(i, o)| {
+                crate::scene::bodies::FloatingBody::from_object(*i, o, level).is_some()
+            })
+            .count();
+        if body >= floating {
+            let body_at = format!("{at}.body");
+            let body_at = if self.node(&body_at).is_some() {
+                body_at
+            } else {
+                at.to_owned()
+            };
+            self.at(
+                &body_at,
+                format!(
+                    "{written} has {floating} floating bodies: body {body} does not exist (counting from 0)"
+                ),
+            );
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn check(text: &str) -> Vec<Diagnostic> {
+        let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("slides/test-deck.ron");
+        DeckChecker::new().check_text(text, &file).problems
+    }
+
+    fn deck(body: &str) -> String {
+        format!(
+            "(\n  title: \"t\",\n  slides: [\n    (title: \"s\", body: [\n{body}\n    ]),\n  ],\n)"
+        )
+    }
+
+    #[test]
+    fn typst_error_at_the_faulty_character() {
+        let p = check(&deck(r#"      Math(src: "dot(x) = #nosuchfn(x)"),"#));
+        assert_eq!(p.len(), 1, "{p:?}");
+        // line 5; the string's content starts at column 18, `nosuchfn` is its 11th character
+        assert_eq!((p[0].line, p[0].col), (5, 28), "{}", p[0]);
+        assert!(p[0].message.contains("nosuchfn"), "{}", p[0]);
+    }
+
+    #[test]
+    fn typst_error_in_a_raw_string_inside_columns() {
+        let p = check(&deck(
+            "      Columns([[Text(\"a\")], [\n        Math(src: r#\"x = frac(1\"#),\n      ]]),",
+        ));
+        assert_eq!(p.len(), 1, "{p:?}");
+        assert_eq!(p[0].line, 6, "{}", p[0]);
+        assert!(p[0].col >= 20, "{}", p[0]);
+    }
+
+    #[test]
+    fn latex_error_at_the_formula_start() {
+        let p = check(&deck(
+            r#"      Math(src: "x + \\notacommand{x}", latex: true),"#,
+        ));
+        assert_eq!(p.len(), 1, "{p:?}");
+        assert_eq!((p[0].line, p[0].col), (5, 18), "{}", p[0]);
+        assert!(p[0].message.contains("LaTeX"), "{}", p[0]);
+    }
+
+    #[test]
+    fn images_must_exist_decode_and_stay_inside() {
+        let p = check(&deck(
+            "      Image(path: \"nope.png\"),\n      Image(path: \"../../../etc/passwd\"),\n      Image(path: \"lecture.ron\", width: Some(3.0)),",
+        ));
+        let at: Vec<(usize, usize)> = p.iter().map(|d| (d.line, d.col)).collect();
+        // at the path's first character; the width at its value
+        assert_eq!(at, [(5, 20), (6, 20), (7, 20), (7, 46)], "{p:?}");
+        assert!(p[0].message.contains("no such file"), "{}", p[0]);
+        assert!(p[1].message.contains("outside the project"), "{}", p[1]);
+        assert!(p[2].message.contains("decode"), "{}", p[2]);
+        assert!(p[3].message.contains("width 3"), "{}", p[3]);
+    }
+
+    #[test]
+    fn tableau_files_and_inline_tableaux() {
+        let p = check(&deck(concat!(
+            "      Widget(Stability((files: [\"tableaux/rk4.ron\", \"tableaux/nope.ron\"],\n",
+            "        tableaux: [(name: \"bad\", a: [[0.0, 0.0], [0.5, 0.5]], b: [0.5, 0.5], c: [0.0, 0.5])]))),",
+        )));
+        let at: Vec<(usize, usize)> = p.iter().map(|d| (d.line, d.col)).collect();
+        assert_eq!(at, [(5, 54), (6, 56)], "{p:?}");
+        assert!(p[0].message.contains("no such file"), "{}", p[0]);
+        assert!(p[1].message.contains("a[2][2]"), "{}", p[1]);
+    }
+
+    #[test]
+    fn the_simulation_loop_scene_and_body() {
+        let p = check(&deck(concat!(
+            "      Widget(SimulationLoop((scene: \"../scenes/nope.ron\"))),\n",
+            "      Widget(SimulationLoop((body: 9))),",
+        )));
+        let at: Vec<(usize, usize)> = p.iter().map(|d| (d.line, d.col)).collect();
+        assert_eq!(at, [(5, 38), (6, 36)], "{p:?}");
+        assert!(p[0].message.contains("no such file"), "{}", p[0]);
+        assert!(p[1].message.contains("body 9"), "{}", p[1]);
+    }
+
+    #[test]
+    fn bookmarks_name_real_slides() {
+        let text = deck("").replace(
+            "  ],\n)",
+            "  ],\n  bookmarks: [(key: 12, slide: \"gone\")],\n)",
+        );
+        let p = check(&text);
+        assert_eq!(p.len(), 2, "{p:?}");
+        assert_eq!((p[0].line, p[0].col), (8, 21), "{}", p[0]);
+        assert_eq!((p[1].line, p[1].col), (8, 32), "{}", p[1]);
+    }
+
+    #[test]
+    fn the_bundled_deck_is_clean() {
+        let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("slides/lecture.ron");
+        let c = DeckChecker::new().check_file(&file);
+        assert!(c.problems.is_empty(), "{:?}", c.problems);
+        assert!(c.deck.is_some());
+    }
+}
