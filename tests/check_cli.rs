@@ -81,9 +81,9 @@ fn a_missing_tableau_file_at_its_path() {
     let f = write(
         &p.path().join("slides"),
         "tableau.ron",
-        &deck(r#"      Widget(Stability((files: ["tableaux/nope.ron"]))),"#),
+        &deck(r#"      Widget(Stability((methods: [Tableau("tableaux/nope.ron")]))),"#),
     );
-    assert_one_problem(&f, 5, 34, "`tableaux/nope.ron`: no such file");
+    assert_one_problem(&f, 5, 44, "`tableaux/nope.ron`: no such file");
 }
 
 #[test]
@@ -105,7 +105,7 @@ fn a_bad_problem_name_at_the_name() {
         "bad.ron",
         "(\n    name: \"p\",\n    vars: [\"x\", \"my v\"],\n    rhs: [\"1\", \"x\"],\n    initial: [0.0, 0.0],\n)\n",
     );
-    assert_one_problem(&f, 3, 17, "`my v` is not a valid name");
+    assert_one_problem(&f, 3, 18, "`my v` is not a valid name");
 }
 
 #[test]

@@ -295,7 +295,7 @@ fn a_failed_formula_or_widget_fails_the_export_unless_keep_going() {
         &deck_file,
         r#"(title: "Bad", slides: [
             (title: "One", body: [Math(src: "dot(x) = #nosuchfn(x)")]),
-            (title: "Two", body: [Widget(Stability((files: ["tableaux/nope.ron"])))]),
+            (title: "Two", body: [Widget(Stability((methods: [Tableau("tableaux/nope.ron")])))]),
         ])"#,
     )
     .unwrap();

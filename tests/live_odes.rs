@@ -234,7 +234,10 @@ fn equation_faults_are_reported_at_the_decks_line_and_column() {
     let (text, deck) = problems_of(r#"Widget(Spiral((ode: File("problems/none.ron"))))"#);
     let d = &deck.widget_problems[0].diagnostic;
     assert_eq!((d.line, d.col), at(&text, "problems/none.ron", 0), "{d}");
-    assert!(d.message.contains("no problem file"), "{d}");
+    assert!(
+        d.message.contains("`problems/none.ron`: no such file"),
+        "{d}"
+    );
     let (text, deck) = problems_of(r#"Widget(Spiral((ode: File("../../etc/passwd"))))"#);
     let d = &deck.widget_problems[0].diagnostic;
     assert_eq!((d.line, d.col), at(&text, "../../etc", 0), "{d}");

@@ -173,7 +173,10 @@ fn check_reports_a_heavy_formula_and_an_outside_image_at_their_positions() {
     for (needle, what) in [
         // Which bound stops the heavy formula first depends on the machine's speed: a fast
         // one fills 512 MB before 2 s pass. Either way it is stopped and reported in place.
-        ("#range", &["formula stopped after 2 s", "more than 512 MB"][..]),
+        (
+            "#range",
+            &["formula stopped after 2 s", "more than 512 MB"][..],
+        ),
         ("../../", &["leads outside the project folder"][..]),
         ("undefinedthing", &["unknown variable"][..]),
     ] {

@@ -128,7 +128,9 @@ fn a_slide_whose_formula_is_typesetting_is_drawn_at_once_and_the_formula_follows
     assert_eq!(wait_for_formula(&mut h), 1);
     for job in busy {
         let err = job.wait().unwrap_err();
-        assert!(err.message.contains("stopped after"), "{err}");
+        // the time bound, or on a fast machine the memory bound first
+        let stopped = ["stopped after", "more than 512 MB"];
+        assert!(stopped.iter().any(|w| err.message.contains(w)), "{err}");
     }
 
     // Slide 2's formula was typeset ahead while slide 1 was shown: going there draws it at once.
@@ -173,7 +175,9 @@ fn a_heavy_formula_saved_while_presenting_is_stopped_and_named_at_its_line() {
     let col = byte - heavy[..byte].rfind('\n').unwrap();
     std::fs::write(&path, &heavy).unwrap();
     let saved = Instant::now();
-    let notice = format!("talk.ron:{line}:{col}: formula stopped after 2 s");
+    // which bound stops it first depends on the machine's speed
+    let notices = ["stopped after 2 s", "used more than 512 MB"]
+        .map(|why| format!("talk.ron:{line}:{col}: formula {why}"));
     loop {
         std::thread::sleep(Duration::from_millis(20));
         h.step();
@@ -183,12 +187,15 @@ fn a_heavy_formula_saved_while_presenting_is_stopped_and_named_at_its_line() {
             "the slide stays on screen"
         );
         assert_eq!(images, 1, "the last good formula stays on screen");
-        if h.query_by_label_contains(&notice).is_some() {
+        if notices
+            .iter()
+            .any(|n| h.query_by_label_contains(n).is_some())
+        {
             break;
         }
         assert!(
             saved.elapsed() < Duration::from_secs(20),
-            "no notice {notice:?}; drawn: {texts:?}"
+            "no notice {notices:?}; drawn: {texts:?}"
         );
     }
     assert_eq!(

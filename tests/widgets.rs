@@ -286,7 +286,11 @@ fn params_round_trip_through_reload_and_reset() {
         })
         .collect();
     let kinds: std::collections::BTreeSet<_> = specs.iter().map(|s| s.kind()).collect();
-    assert_eq!(kinds.len(), 9, "the deck shows all nine widgets: {kinds:?}");
+    assert_eq!(
+        kinds.len(),
+        11,
+        "the deck shows all eleven widgets: {kinds:?}"
+    );
     for spec in specs {
         let mut w = spec.instantiate_in(Some(deck_path()));
         let ids: Vec<String> = w.params().iter().map(|p| p.id.clone()).collect();

@@ -287,11 +287,11 @@ mod tests {
     #[test]
     fn tableau_files_and_inline_tableaux() {
         let p = check(&deck(concat!(
-            "      Widget(Stability((files: [\"tableaux/rk4.ron\", \"tableaux/nope.ron\"],\n",
+            "      Widget(Stability((methods: [Tableau(\"tableaux/rk4.ron\"), Tableau(\"tableaux/nope.ron\")],\n",
             "        tableaux: [(name: \"bad\", a: [[0.0, 0.0], [0.5, 0.5]], b: [0.5, 0.5], c: [0.0, 0.5])]))),",
         )));
         let at: Vec<(usize, usize)> = p.iter().map(|d| (d.line, d.col)).collect();
-        assert_eq!(at, [(5, 54), (6, 56)], "{p:?}");
+        assert_eq!(at, [(5, 73), (6, 56)], "{p:?}");
         assert!(p[0].message.contains("no such file"), "{}", p[0]);
         assert!(p[1].message.contains("a[2][2]"), "{}", p[1]);
     }

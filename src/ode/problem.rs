@@ -65,6 +65,8 @@ pub enum DefPos {
     InExpr(&'static str, usize, usize),
     /// The value of parameter (or range) `name`.
     Entry(&'static str, String),
+    /// The key `name` itself of the map field (a bad parameter name).
+    Key(&'static str, String),
 }
 
 impl DefPos {
@@ -76,7 +78,8 @@ impl DefPos {
             DefPos::Field(f) => (f.to_string(), 0),
             DefPos::Item(f, i) => (format!("{f}[{i}]"), 0),
             DefPos::InExpr(f, i, c) => (format!("{f}[{i}]"), *c),
-            DefPos::Entry(f, name) => (format!("{f}.{name}"), 0),
+            // resolved through the map itself (a name may hold dots or brackets)
+            DefPos::Entry(f, _) | DefPos::Key(f, _) => (f.to_string(), 0),
         }
     }
 }
@@ -218,7 +221,7 @@ impl ProblemDef {
         let params = self
             .params
             .keys()
-            .map(|k| (DefPos::Entry("params", k.clone()), k));
+            .map(|k| (DefPos::Key("params", k.clone()), k));
         for (pos, name) in vars.chain(params) {
             let ok = name
                 .chars()
@@ -274,7 +277,7 @@ impl ProblemDef {
         for (k, (lo, hi)) in &self.ranges {
             if !self.params.contains_key(k) {
                 return Err(err(
-                    DefPos::Entry("ranges", k.clone()),
+                    DefPos::Key("ranges", k.clone()),
                     format!("`ranges` names `{k}`, which is not a parameter"),
                 ));
             }
@@ -365,8 +368,27 @@ pub fn diagnostic_at(text: &str, base: &str, path: &Path, e: &DefError) -> Diagn
                 Some(&tree)
             } else {
                 tree.at(&full)
+            }?;
+            let node = match &e.pos {
+                DefPos::Entry(_, name) | DefPos::Key(_, name) => {
+                    let ron_tree::Value::Map(entries) = &node.value else {
+                        return node.str_offset(text, 0);
+                    };
+                    let Some((key, value)) = entries
+                        .iter()
+                        .find(|(k, _)| k.as_str() == Some(name.as_str()))
+                    else {
+                        return node.str_offset(text, 0);
+                    };
+                    if matches!(e.pos, DefPos::Key(..)) {
+                        key
+                    } else {
+                        value
+                    }
+                }
+                _ => node,
             };
-            node.and_then(|n| n.str_offset(text, ch))
+            node.str_offset(text, ch)
         })
         .map_or((0, 0), |at| ron_tree::line_col(text, at));
     Diagnostic::new(path, line, col, e.message.clone())
@@ -513,14 +535,14 @@ mod tests {
             let d = Problem::parse(&text, "p.ron").unwrap_err();
             (d.line, d.col)
         };
-        // `vars: ["x", "v"]` on line 3: the second name is at column 17
-        assert_eq!(at(OSC.replace("\"v\"]", "\"x\"]")), (3, 17));
+        // `vars: ["x", "v"]` on line 3: the second name's first character is at column 18
+        assert_eq!(at(OSC.replace("\"v\"]", "\"x\"]")), (3, 18));
         assert_eq!(
             at(OSC.replace("[\"x\", \"v\"]", "[\"x\", \"2v\"]")),
-            (3, 17)
+            (3, 18)
         );
-        // the params key `"sin"` on line 5, column 14
-        assert_eq!(at(OSC.replace("\"w\":", "\"sin\":")), (5, 14));
+        // the params key `"sin"` on line 5: its first character at column 15
+        assert_eq!(at(OSC.replace("\"w\":", "\"sin\":")), (5, 15));
         assert_eq!(at(OSC.replace("[1.0, 0.0]", "[1.0]")), (6, 14));
         assert_eq!(at(OSC.replace("t0: 0.0", "t0: NaN")), (7, 9));
         assert_eq!(

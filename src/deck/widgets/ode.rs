@@ -67,7 +67,12 @@ pub fn resolve_path(deck_path: Option<&Path>, written: &str) -> Result<PathBuf, 
         Some(deck) => paths::resolve_for(deck, written),
         None => paths::resolve(Path::new("."), Path::new("."), written),
     };
-    r.map_err(|e| e.to_string())
+    let path = r.map_err(|e| e.to_string())?;
+    // said here in the deck's own words (the OS error names the absolute path)
+    if !path.is_file() {
+        return Err(format!("`{written}`: no such file"));
+    }
+    Ok(path)
 }
 
 impl OdeSource {
@@ -85,15 +90,6 @@ impl OdeSource {
                         message: format!("ode: {m}"),
                     })
                 })?;
-                if !file.is_file() {
-                    return Err(OdeError::InDeck(DefError {
-                        pos: DefPos::Whole,
-                        message: format!(
-                            "ode: no problem file {} (from `{written}`)",
-                            file.display()
-                        ),
-                    }));
-                }
                 let (_, mut def) = problem::read_def(&file).map_err(OdeError::InFile)?;
                 if def.name.is_empty() {
                     def.name = Path::new(written)
@@ -169,7 +165,7 @@ mod tests {
         let e = OdeSource::File("problems/nope.ron".into())
             .load(Some(deck()))
             .unwrap_err();
-        assert!(e.message().contains("no problem file"), "{}", e.message());
+        assert_eq!(e.message(), "ode: `problems/nope.ron`: no such file");
         let bad: OdeSource =
             ron::from_str(r#"Inline((vars: ["x"], rhs: ["x*("], initial: [1.0]))"#).unwrap();
         match bad.load(None).unwrap_err() {
