@@ -14,6 +14,18 @@ pub const RK4_TYPO: Color32 = Color32::from_rgb(230, 159, 0);
 pub const DOPRI: Color32 = Color32::from_rgb(86, 180, 233);
 pub const FIELD: Color32 = Color32::from_rgb(150, 150, 160);
 pub const DIVERGED: Color32 = Color32::from_rgb(200, 0, 0);
+/// The adaptive embedded pairs. The Okabe–Ito palette is spent on the methods above, so these
+/// are mid-luminance hues chosen to stay apart from it and from each other, each with a
+/// contrast of at least 3:1 on both slide themes (light paper and dark slate; tested):
+/// Dopri5 a deeper blue than RK5 (the same formula at fixed h), Tsit5 ochre, the Verner family
+/// from brown (6) through slate (7) and orchid (8) to violet (9), DOP853 magenta.
+pub const DOPRI5: Color32 = Color32::from_rgb(40, 130, 210);
+pub const TSIT5: Color32 = Color32::from_rgb(175, 135, 0);
+pub const VERN6: Color32 = Color32::from_rgb(165, 105, 60);
+pub const VERN7: Color32 = Color32::from_rgb(105, 125, 190);
+pub const VERN8: Color32 = Color32::from_rgb(185, 95, 200);
+pub const VERN9: Color32 = Color32::from_rgb(130, 95, 235);
+pub const DOP853: Color32 = Color32::from_rgb(215, 55, 140);
 /// Symplectic Euler (rigid body only): a violet, distinct from the palette's method colours
 /// and readable on light and dark slides.
 pub const SYMPLECTIC_EULER: Color32 = Color32::from_rgb(150, 110, 220);
@@ -22,7 +34,8 @@ pub const SYMPLECTIC_EULER: Color32 = Color32::from_rgb(150, 110, 220);
 /// in order.
 pub const EXTRA_COLORS: [Color32; 3] = [HEUN, DOPRI, SYMPLECTIC_EULER];
 
-/// The colour of a built-in method by its key (`euler`, `midpoint`, `heun`, `rk4`, `exact`).
+/// The colour of a built-in method by its key (`euler`, `midpoint`, `heun`, `rk4`, `dopri5`,
+/// `tsit5`, `vern6` … `vern9`, `dop853`, `exact`).
 pub fn method_color(key: &str) -> Color32 {
     match key {
         "euler" => EULER,
@@ -30,6 +43,13 @@ pub fn method_color(key: &str) -> Color32 {
         "heun" => HEUN,
         "rk4" => RK4,
         "rk4-typo" => RK4_TYPO,
+        "dopri5" => DOPRI5,
+        "tsit5" => TSIT5,
+        "vern6" => VERN6,
+        "vern7" => VERN7,
+        "vern8" => VERN8,
+        "vern9" => VERN9,
+        "dop853" => DOP853,
         _ => EXACT,
     }
 }
@@ -157,5 +177,65 @@ pub fn problem_lines(load_error: Option<&str>, method_errors: &[String]) -> Vec<
 pub fn problems_ui(ui: &mut egui::Ui, load_error: Option<&str>, method_errors: &[String]) {
     for line in problem_lines(load_error, method_errors) {
         ui.colored_label(DIVERGED, egui::RichText::new(line).small());
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// WCAG relative luminance of an sRGB colour.
+    fn luminance(c: Color32) -> f64 {
+        let lin = |v: u8| {
+            let v = f64::from(v) / 255.0;
+            if v <= 0.040_45 {
+                v / 12.92
+            } else {
+                ((v + 0.055) / 1.055).powf(2.4)
+            }
+        };
+        0.2126 * lin(c.r()) + 0.7152 * lin(c.g()) + 0.0722 * lin(c.b())
+    }
+
+    fn contrast(a: Color32, b: Color32) -> f64 {
+        let (la, lb) = (luminance(a), luminance(b));
+        (la.max(lb) + 0.05) / (la.min(lb) + 0.05)
+    }
+
+    #[test]
+    fn pair_colours_read_on_both_themes_and_differ_from_every_method_colour() {
+        // the slide backgrounds of app::theme (dark slate, light paper) and plain white
+        let backgrounds = [
+            Color32::from_rgb(0x16, 0x19, 0x21),
+            Color32::from_rgb(0xfb, 0xf9, 0xf4),
+            Color32::WHITE,
+        ];
+        let pairs = [DOPRI5, TSIT5, VERN6, VERN7, VERN8, VERN9, DOP853];
+        for c in pairs {
+            for bg in backgrounds {
+                assert!(
+                    contrast(c, bg) >= 3.0,
+                    "{c:?} on {bg:?}: {}",
+                    contrast(c, bg)
+                );
+            }
+        }
+        let all = [
+            EULER, MIDPOINT, RK4, HEUN, RK4_TYPO, DOPRI, DOPRI5, TSIT5, VERN6, VERN7, VERN8, VERN9,
+            DOP853,
+        ];
+        for (i, a) in all.iter().enumerate() {
+            for b in &all[i + 1..] {
+                let d = (i32::from(a.r()) - i32::from(b.r())).abs()
+                    + (i32::from(a.g()) - i32::from(b.g())).abs()
+                    + (i32::from(a.b()) - i32::from(b.b())).abs();
+                assert!(d >= 60, "{a:?} and {b:?} are too alike ({d})");
+            }
+        }
+        for key in [
+            "dopri5", "tsit5", "vern6", "vern7", "vern8", "vern9", "dop853",
+        ] {
+            assert_ne!(method_color(key), EXACT, "{key}");
+        }
     }
 }

@@ -1,18 +1,21 @@
-//! Widget 7: Speed vs error: the work–precision diagram (error vs f-evaluations, and vs wall time) of
-//! Euler, midpoint, RK4 and a fifth-order method, computed on a background thread so the UI
-//! never waits. Answers "why not RK5, RK6?": more stages buy less and less per evaluation, and
-//! all methods meet the round-off floor.
+//! Widget 7: Speed vs error: the work–precision diagram (error vs f-evaluations, and vs wall time),
+//! computed on a background thread so the UI never waits. Fixed-step methods (Euler, midpoint,
+//! RK4, a fifth-order RK5, deck tableaux) are swept over the step h; the adaptive embedded pairs
+//! (Tsit5, DOP853, Vern9, …) over their tolerance, through the one adaptive loop
+//! (`ode::solve_embedded`). Answers "why not RK5, RK6?": each extra order costs more
+//! f-evaluations per step and pays off once the error asked for is small enough — DOP853 and
+//! Vern9 overtake RK4 at tight errors, while at loose ones RK4 or a fifth-order pair is cheaper.
 
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{Receiver, channel};
 use std::time::Instant;
 
-use egui_plot::{Line, Points};
+use egui_plot::{Line, MarkerShape, Points};
 
 use std::path::Path as FsPath;
 use std::sync::OnceLock;
 
-use super::convergence::{log_axes_plot, truth};
+use super::convergence::{log_axes_plot, pow10_label, truth};
 use super::live_ode::LiveOde;
 use super::methods::{MethodSet, steps_for};
 use super::style::{self, fmt_num};
@@ -20,7 +23,7 @@ use super::{Param, SlideWidget};
 use crate::deck::widgets::WorkPrecisionSpec;
 use crate::ode::problem::Problem;
 use crate::ode::study::max_error;
-use crate::ode::{Scheme, Tableau, solve_fixed_final};
+use crate::ode::{Adaptive, Method, Scheme, Solution, Tableau, solve_embedded, solve_fixed_final};
 
 /// Snapshot tests set this: timings then come from a fixed cost per f-evaluation and the study
 /// runs on the calling thread, so pictures are reproducible. Live, time is measured.
@@ -37,58 +40,135 @@ pub fn dopri5_fixed() -> &'static Tableau {
     })
 }
 
-/// One run: f-evaluations, seconds, global error.
+/// The largest step of the fixed-step sweep; run k uses h = H_MAX / 2^k.
+pub const H_MAX: f64 = 1.0;
+/// The loosest tolerance of the adaptive sweep; run k uses rtol = atol = TOL_MAX / 10^k.
+pub const TOL_MAX: f64 = 1e-2;
+/// The tightest tolerance asked of a pair: near round-off, and above the loop's floor
+/// (rtol > 10 machine epsilons).
+pub const TOL_MIN: f64 = 1e-13;
+/// Steps (accepted + rejected) one adaptive run may take: a stiff equation typed live makes a
+/// pair crawl, and the background study must end (the run reports `Failed`, drawn as nothing).
+pub const MAX_ADAPTIVE_STEPS: usize = 1 << 18;
+
+/// How one method is swept.
+#[derive(Debug, Clone, Copy)]
+pub enum Sweep<'a> {
+    /// fixed steps h = H_MAX / 2^k
+    Steps(Scheme<'a>),
+    /// an adaptive pair at each of [`tolerances`]
+    Tolerances(Method),
+}
+
+/// The tolerances of the adaptive runs, one per decade from [`TOL_MAX`] to [`TOL_MIN`]. The
+/// sweep does not depend on `levels` (the step sizes of the fixed-step methods): a pair
+/// always shows its whole curve, from the loose end where low order is cheaper to the tight
+/// end where it overtakes RK4, for a few hundred f-evaluations each.
+pub fn tolerances() -> Vec<f64> {
+    let decades = (TOL_MAX / TOL_MIN).log10().round() as i32;
+    (0..=decades).map(|k| TOL_MAX / 10f64.powi(k)).collect()
+}
+
+/// One run: the step or tolerance, f-evaluations, seconds, global error.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Sample {
+    /// h (fixed step) or rtol = atol (adaptive pair)
+    pub h_or_tol: f64,
     pub f_evals: usize,
     pub secs: f64,
     pub error: f64,
 }
 
-/// The study for one method (pure; runs on any thread): `ode::solve_fixed_final` at each h,
-/// error by `ode::study::max_error` against `exact`, the true state at t_end.
+/// Runs `run` (repeated while short, so the clock resolves it) and turns its solution into a
+/// sample; in DETERMINISTIC mode time is 50 ns per f-evaluation.
+fn timed(h_or_tol: f64, exact: &[f64], run: impl Fn() -> Solution) -> Sample {
+    let start = Instant::now();
+    let mut reps = 0;
+    let sol = loop {
+        let sol = run();
+        reps += 1;
+        if start.elapsed().as_secs_f64() > 2e-3 || reps >= 50 {
+            break sol;
+        }
+    };
+    let secs = if DETERMINISTIC.load(Ordering::Relaxed) {
+        sol.f_evals as f64 * 50e-9
+    } else {
+        start.elapsed().as_secs_f64() / reps as f64
+    };
+    let error = if sol.finished() {
+        max_error(sol.last().1, exact)
+    } else {
+        f64::INFINITY
+    };
+    Sample {
+        h_or_tol,
+        f_evals: sol.f_evals as usize,
+        secs,
+        error,
+    }
+}
+
+/// The study for one method (pure; runs on any thread) from the problem's t0 to t_end, error
+/// by `ode::study::max_error` against `exact`, the true state at t_end: a fixed-step method
+/// by `ode::solve_fixed_final` at each h, an adaptive pair by `ode::solve_embedded` at each
+/// tolerance.
 pub fn study(
     spec: &WorkPrecisionSpec,
     sys: &Problem,
     exact: &[f64],
-    scheme: Scheme<'_>,
+    sweep: Sweep<'_>,
 ) -> Vec<Sample> {
-    let (t0, x0) = (sys.t0, sys.initial.as_slice());
-    let h_max = 1.0;
-    (0..spec.levels.clamp(2, 16))
-        .map(|k| {
-            let n = steps_for(t0, spec.t_end, h_max / 2f64.powi(k as i32), 1 << 22).max(1);
-            let h = (spec.t_end - t0) / n as f64;
-            let start = Instant::now();
-            let mut reps = 0;
-            let sol = loop {
-                let sol = solve_fixed_final(sys, scheme, t0, x0, h, spec.t_end, 1e12);
-                reps += 1;
-                // repeat short runs so the clock resolves them
-                if start.elapsed().as_secs_f64() > 2e-3 || reps >= 50 {
-                    break sol;
-                }
-            };
-            let secs = if DETERMINISTIC.load(Ordering::Relaxed) {
-                sol.f_evals as f64 * 50e-9
-            } else {
-                start.elapsed().as_secs_f64() / reps as f64
-            };
-            let error = if sol.finished() {
-                max_error(sol.last().1, exact)
-            } else {
-                f64::INFINITY
-            };
-            Sample {
-                f_evals: sol.f_evals as usize,
-                secs,
-                error,
-            }
-        })
-        .collect()
+    let (t0, x0, t_end) = (sys.t0, sys.initial.as_slice(), spec.t_end);
+    match sweep {
+        Sweep::Steps(scheme) => (0..spec.levels.clamp(2, 16))
+            .map(|k| {
+                let n = steps_for(t0, t_end, H_MAX / 2f64.powi(k as i32), 1 << 22).max(1);
+                let h = (t_end - t0) / n as f64;
+                timed(h, exact, || {
+                    solve_fixed_final(sys, scheme, t0, x0, h, t_end, 1e12)
+                })
+            })
+            .collect(),
+        Sweep::Tolerances(method) => tolerances()
+            .into_iter()
+            .map(|tol| {
+                let opts = Adaptive {
+                    rtol: tol,
+                    atol: tol,
+                    record: false,
+                    max_steps: MAX_ADAPTIVE_STEPS,
+                    ..Adaptive::default()
+                };
+                timed(tol, exact, || {
+                    solve_embedded(sys, method, t0, x0, t_end, opts)
+                })
+            })
+            .collect(),
+    }
 }
 
-type Results = Vec<(String, egui::Color32, Vec<Sample>)>;
+/// One method's curve.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Curve {
+    /// `rk4`, `dop853`, a tableau's stem, `rk5`: CSV series names
+    pub key: String,
+    pub name: String,
+    pub color: egui::Color32,
+    /// swept over the tolerance (an adaptive pair) rather than h
+    pub adaptive: bool,
+    pub samples: Vec<Sample>,
+}
+
+impl Curve {
+    pub fn best_error(&self) -> f64 {
+        self.samples
+            .iter()
+            .map(|s| s.error)
+            .fold(f64::INFINITY, f64::min)
+    }
+}
+
 type Key = (WorkPrecisionSpec, u64, Vec<bool>);
 
 /// One method of the study, owned so it can run on the background thread.
@@ -99,13 +179,19 @@ enum Job {
 }
 
 impl Job {
-    fn scheme(&self) -> Scheme<'_> {
+    fn sweep(&self) -> Sweep<'_> {
         match self {
-            Job::Method(m) => m.scheme(),
-            Job::Rk5 => Scheme::Tableau(dopri5_fixed()),
+            Job::Method(m) => match m.adaptive() {
+                Some(pair) => Sweep::Tolerances(pair),
+                None => Sweep::Steps(m.scheme()),
+            },
+            Job::Rk5 => Sweep::Steps(Scheme::Tableau(dopri5_fixed())),
         }
     }
 }
+
+/// A curve still to compute: everything but its samples.
+type Pending = (Curve, Job);
 
 pub struct WorkPrecision {
     pub spec: WorkPrecisionSpec,
@@ -113,8 +199,8 @@ pub struct WorkPrecision {
     ode: LiveOde,
     methods: MethodSet,
     computed_for: Option<Key>,
-    results: Results,
-    pending: Option<Receiver<(String, egui::Color32, Vec<Sample>)>>,
+    results: Vec<Curve>,
+    pending: Option<Receiver<Curve>>,
 }
 
 impl WorkPrecision {
@@ -130,20 +216,29 @@ impl WorkPrecision {
         }
     }
 
-    fn jobs(&self) -> Vec<(String, egui::Color32, Job)> {
-        let mut v: Vec<_> = self
+    fn jobs(&self) -> Vec<Pending> {
+        let curve = |key: &str, name: &str, color, adaptive| Curve {
+            key: key.to_owned(),
+            name: name.to_owned(),
+            color,
+            adaptive,
+            samples: Vec::new(),
+        };
+        let mut v: Vec<Pending> = self
             .methods
             .shown()
             .map(|m| {
-                (
-                    m.method.name.clone(),
+                let c = curve(
+                    &m.method.key,
+                    &m.method.name,
                     m.color,
-                    Job::Method(m.method.clone()),
-                )
+                    m.method.adaptive().is_some(),
+                );
+                (c, Job::Method(m.method.clone()))
             })
             .collect();
         if self.spec.rk5 {
-            v.push(("RK5".into(), style::DOPRI, Job::Rk5));
+            v.push((curve("rk5", "RK5", style::DOPRI, false), Job::Rk5));
         }
         v
     }
@@ -156,32 +251,44 @@ impl WorkPrecision {
         )
     }
 
+    /// Every curve at once, on the calling thread (tests and `export --data`).
+    pub fn compute(&mut self) -> Vec<Curve> {
+        let Some(problem) = self.ode.problem().cloned() else {
+            return Vec::new();
+        };
+        let exact = truth(&problem, self.spec.t_end);
+        self.jobs()
+            .into_iter()
+            .map(|(mut c, job)| {
+                c.samples = study(&self.spec, &problem, &exact, job.sweep());
+                c
+            })
+            .collect()
+    }
+
     /// Starts the study for the current spec (in the background unless DETERMINISTIC).
     fn start(&mut self, ctx: &egui::Context) {
         self.computed_for = Some(self.key());
         self.results.clear();
         self.pending = None;
+        if DETERMINISTIC.load(Ordering::Relaxed) {
+            self.results = self.compute();
+            return;
+        }
         let Some(problem) = self.ode.problem().cloned() else {
             return;
         };
         let jobs = self.jobs();
         let spec = self.spec.clone();
-        if DETERMINISTIC.load(Ordering::Relaxed) {
-            let exact = truth(&problem, spec.t_end);
-            self.results = jobs
-                .into_iter()
-                .map(|(n, c, job)| (n, c, study(&spec, &problem, &exact, job.scheme())))
-                .collect();
-            return;
-        }
         let (tx, rx) = channel();
         let ctx = ctx.clone();
         // Dropping the receiver (spec changed again) makes the next send fail: the thread stops.
+        // Each run is bounded (2^22 fixed steps, MAX_ADAPTIVE_STEPS adaptive ones).
         std::thread::spawn(move || {
             let exact = truth(&problem, spec.t_end);
-            for (name, color, job) in jobs {
-                let r = study(&spec, &problem, &exact, job.scheme());
-                if tx.send((name, color, r)).is_err() {
+            for (mut curve, job) in jobs {
+                curve.samples = study(&spec, &problem, &exact, job.sweep());
+                if tx.send(curve).is_err() {
                     return;
                 }
                 ctx.request_repaint();
@@ -208,6 +315,26 @@ impl WorkPrecision {
                 }
             }
         }
+    }
+
+    /// What the two sweeps ran, for the caption: "h = 1 … 2⁻⁹; tolerance 10⁻² … 10⁻¹¹".
+    fn sweeps_caption(&self) -> String {
+        let levels = self.spec.levels.clamp(2, 16);
+        let mut parts = Vec::new();
+        if self.results.iter().any(|c| !c.adaptive) {
+            parts.push(format!(
+                "● fixed step h = 1 … 2{}",
+                pow10_label(-(levels as f64 - 1.0)).trim_start_matches("10")
+            ));
+        }
+        if self.results.iter().any(|c| c.adaptive) {
+            parts.push(format!(
+                "■ adaptive, tolerance {} … {}",
+                pow10_label(TOL_MAX.log10()),
+                pow10_label(TOL_MIN.log10())
+            ));
+        }
+        parts.join(";  ")
     }
 }
 
@@ -237,17 +364,17 @@ impl SlideWidget for WorkPrecision {
             .problem()
             .map(|p| (p.name.clone(), p.t0))
             .unwrap_or_default();
-        ui.horizontal(|ui| {
+        ui.horizontal_wrapped(|ui| {
             ui.label(format!(
-                "{name} over t ∈ [{}, {}]; best error per method:",
+                "{name} over t ∈ [{}, {}];  {};  best error:",
                 fmt_num(t0).trim_end_matches(".000"),
-                fmt_num(self.spec.t_end)
+                fmt_num(self.spec.t_end),
+                self.sweeps_caption(),
             ));
-            for (name, color, s) in &self.results {
-                let best = s.iter().map(|s| s.error).fold(f64::INFINITY, f64::min);
+            for c in &self.results {
                 ui.colored_label(
-                    *color,
-                    egui::RichText::new(format!("{name} {}", fmt_num(best))).strong(),
+                    c.color,
+                    egui::RichText::new(format!("{} {}", c.name, fmt_num(c.best_error()))).strong(),
                 );
             }
         });
@@ -264,8 +391,9 @@ impl SlideWidget for WorkPrecision {
                         .width(half)
                         .height(height)
                         .show(ui, |p| {
-                            for (name, color, samples) in results {
-                                let v: Vec<[f64; 2]> = samples
+                            for c in results {
+                                let v: Vec<[f64; 2]> = c
+                                    .samples
                                     .iter()
                                     .filter(|s| s.error.is_finite() && s.error > 0.0)
                                     .map(|s| {
@@ -275,12 +403,24 @@ impl SlideWidget for WorkPrecision {
                                         ]
                                     })
                                     .collect();
+                                // squares mark a tolerance sweep, dots a step-size sweep
+                                let (shape, radius) = if c.adaptive {
+                                    (MarkerShape::Square, 4.0)
+                                } else {
+                                    (MarkerShape::Circle, 4.5)
+                                };
                                 p.line(
-                                    Line::new(name.clone(), v.clone())
-                                        .color(*color)
+                                    Line::new(c.name.clone(), v.clone())
+                                        .color(c.color)
                                         .width(style::PATH_WIDTH),
                                 );
-                                p.points(Points::new(name.clone(), v).color(*color).radius(4.5));
+                                p.points(
+                                    Points::new(c.name.clone(), v)
+                                        .color(c.color)
+                                        .shape(shape)
+                                        .filled(true)
+                                        .radius(radius),
+                                );
                             }
                         });
                 });
@@ -309,36 +449,65 @@ mod tests {
         FsPath::new(concat!(env!("CARGO_MANIFEST_DIR"), "/slides/lecture.ron"))
     }
 
-    fn spec(levels: usize) -> WorkPrecisionSpec {
+    fn spec(levels: usize, methods: &str) -> WorkPrecisionSpec {
         ron::from_str(&format!(
-            "(ode: File(\"problems/circle.ron\"), t_end: 10.0, levels: {levels})"
+            "(ode: File(\"problems/circle.ron\"), t_end: 10.0, levels: {levels}{methods})"
         ))
         .unwrap()
     }
 
     #[test]
     fn rk5_is_fifth_order_and_beats_rk4_per_evaluation_at_high_accuracy() {
-        let spec = spec(6);
+        let spec = spec(6, "");
         let p = Problem::load(deck().with_file_name("problems/circle.ron")).unwrap();
         let exact = p.exact(10.0).unwrap();
-        let rk5 = study(&spec, &p, &exact, Scheme::Tableau(dopri5_fixed()));
+        let rk5 = study(
+            &spec,
+            &p,
+            &exact,
+            Sweep::Steps(Scheme::Tableau(dopri5_fixed())),
+        );
         let order = (rk5[2].error / rk5[3].error).log2();
         assert!((order - 5.0).abs() < 0.3, "{order}");
-        let rk4 = study(&spec, &p, &exact, Scheme::Method(crate::ode::Method::Rk4));
+        let rk4 = study(&spec, &p, &exact, Sweep::Steps(Scheme::Method(Method::Rk4)));
         // at ~the same work, RK5's error is smaller
         assert!(rk5[3].error < rk4[3].error);
     }
 
     #[test]
+    fn adaptive_pairs_sweep_the_tolerance_and_meet_it() {
+        let tols = tolerances();
+        assert_eq!((tols.len(), tols[0]), (12, TOL_MAX));
+        assert!((tols[11] / TOL_MIN - 1.0).abs() < 1e-12);
+        // the sweep is the same whatever `levels` (the fixed-step methods' step sizes) says
+        let spec = spec(4, "");
+        let p = Problem::load(deck().with_file_name("problems/circle.ron")).unwrap();
+        let exact = p.exact(10.0).unwrap();
+        let s = study(&spec, &p, &exact, Sweep::Tolerances(Method::Dop853));
+        assert_eq!(s.len(), 12);
+        for w in s.windows(2) {
+            // tighter tolerance: more work, and (away from round-off) a smaller error
+            assert!(w[1].f_evals > w[0].f_evals, "{s:?}");
+        }
+        // the achieved error follows the tolerance (within a few decades over t = 10)
+        for x in &s {
+            assert!(x.error < 1e3 * x.h_or_tol, "{x:?}");
+        }
+        assert!(s[11].error < 1e-11, "{:?}", s[11]);
+    }
+
+    #[test]
     fn background_study_delivers_without_blocking_the_frame() {
         let ctx = egui::Context::default();
-        let mut w = WorkPrecision::new(spec(12), Some(deck()));
+        let mut w = WorkPrecision::new(spec(12, ", methods: [Euler, Rk4, Dop853]"), Some(deck()));
         w.start(&ctx);
         assert!(w.busy());
         while w.busy() {
             w.poll();
             std::thread::sleep(std::time::Duration::from_millis(5));
         }
-        assert_eq!(w.results.len(), 4);
+        let keys: Vec<_> = w.results.iter().map(|c| c.key.as_str()).collect();
+        assert_eq!(keys, ["euler", "rk4", "dop853", "rk5"]);
+        assert!(w.results[2].adaptive && !w.results[1].adaptive);
     }
 }
