@@ -189,6 +189,12 @@ fn convergence_states() {
         "widget-convergence-typo",
         "Convergence((ode: File(\"problems/forced.ron\"), levels: 8, methods: [Euler, Midpoint, Rk4, Tableau(\"tableaux/rk4-typo.ron\")]))",
     );
+    // adaptive pairs at fixed h: their formulas' orders, labelled as such
+    check(
+        &mut r,
+        "widget-convergence-pairs",
+        "Convergence((ode: File(\"problems/forced.ron\"), h_max: 1.0, levels: 8, methods: [Euler, Midpoint, Rk4, Tableau(\"tableaux/rk4-typo.ron\"), Dop853, Vern9]))",
+    );
     r.unwrap();
 }
 
@@ -200,7 +206,105 @@ fn work_precision_states() {
         "widget-work-precision",
         "WorkPrecision((ode: File(\"problems/circle.ron\"), t_end: 10.0, levels: 10, rk5: true))",
     );
+    // the adaptive pairs as squares (tolerance sweep) beside the h sweeps
+    check(
+        &mut r,
+        "widget-work-precision-pairs",
+        "WorkPrecision((ode: File(\"problems/circle.ron\"), t_end: 10.0, levels: 10, methods: [Euler, Midpoint, Rk4, Tsit5, Dop853, Vern9]))",
+    );
+    // every pair at once, with RK4, on the forced decay (exact solution)
+    check(
+        &mut r,
+        "widget-work-precision-all-pairs",
+        "WorkPrecision((ode: File(\"problems/forced.ron\"), t_end: 10.0, levels: 9, methods: [Rk4, Dopri5, Tsit5, Vern6, Vern7, Vern8, Dop853, Vern9], rk5: false))",
+    );
     r.unwrap();
+}
+
+/// The work-precision slide of the bundled deck, computed on its own spec (no pixels): the
+/// class must see DOP853 and Vern9 overtake RK4 at tight errors, and RK4 hold its own at
+/// loose ones.
+#[test]
+fn work_precision_slide_shows_high_order_pairs_overtake_rk4_at_tight_errors() {
+    use lectern::ode::study::cost_at_error;
+    use lectern::widgets::work_precision::{Curve, WorkPrecision};
+    let deck = lectern::deck::load_deck(deck_path()).unwrap();
+    let slide = deck
+        .slides
+        .iter()
+        .find(|s| s.id.as_deref() == Some("work-precision"))
+        .expect("the work-precision slide");
+    let spec = slide
+        .widgets()
+        .into_iter()
+        .find_map(|(_, w)| match w {
+            WidgetSpec::WorkPrecision(s) => Some(s.clone()),
+            _ => None,
+        })
+        .expect("its widget");
+    let curves = WorkPrecision::new(spec, Some(deck_path())).compute();
+    let curve = |k: &str| -> &Curve {
+        curves
+            .iter()
+            .find(|c| c.key == k)
+            .unwrap_or_else(|| panic!("the slide shows {k}"))
+    };
+    let rk4 = curve("rk4");
+    assert!(!rk4.adaptive && curve("dop853").adaptive && curve("vern9").adaptive);
+    // (error, f-evaluations) of a curve, for interpolation
+    let work = |c: &Curve| -> Vec<(f64, f64)> {
+        c.samples
+            .iter()
+            .map(|s| (s.error, s.f_evals as f64))
+            .collect()
+    };
+    let tight: Vec<_> = rk4.samples.iter().filter(|s| s.error < 1e-8).collect();
+    assert!(tight.len() >= 3, "{:?}", rk4.samples);
+    for pair in ["dop853", "vern9"] {
+        let c = curve(pair);
+        for s in &tight {
+            // at no more f-evaluations than RK4 spent, the pair's error is smaller
+            let best = c
+                .samples
+                .iter()
+                .filter(|p| p.f_evals <= s.f_evals)
+                .map(|p| p.error)
+                .fold(f64::INFINITY, f64::min);
+            assert!(
+                best < s.error,
+                "{pair} at ≤ {} f-evals: {best:e}, RK4 {:e}",
+                s.f_evals,
+                s.error
+            );
+        }
+        // and by a wide margin: RK4 needs many times the work for 1e-10
+        let (mine, rk4s) = (
+            cost_at_error(&work(c), 1e-10).unwrap(),
+            cost_at_error(&work(rk4), 1e-10).unwrap(),
+        );
+        println!(
+            "f-evaluations for 1e-10: {pair} {mine:.0}, RK4 {rk4s:.0} ({:.1}×)",
+            rk4s / mine
+        );
+        assert!(rk4s > 5.0 * mine, "{pair}: {mine} vs RK4 {rk4s}");
+        let at_rk4_best = cost_at_error(&work(c), rk4.best_error()).unwrap();
+        println!(
+            "  for RK4's best error {:e} ({} f-evals): {pair} {at_rk4_best:.0}",
+            rk4.best_error(),
+            rk4.samples.last().unwrap().f_evals
+        );
+    }
+    // At the loose end an extra order is not worth its stages: RK4's cheapest run is cheaper
+    // than any pair's, and Vern9 (16 evaluations a step) spends more at its loosest tolerance
+    // than RK4 needs for an error of 1e-2.
+    let cheapest = |c: &Curve| c.samples.iter().map(|s| s.f_evals).min().unwrap();
+    let rk4_at_loose = cost_at_error(&work(rk4), 1e-2).unwrap();
+    println!("RK4 reaches 1e-2 with {rk4_at_loose:.0} f-evaluations");
+    for c in curves.iter().filter(|c| c.adaptive) {
+        println!("  {} cheapest run {}", c.key, cheapest(c));
+        assert!(cheapest(c) > cheapest(rk4), "{}", c.key);
+    }
+    assert!(cheapest(curve("vern9")) as f64 > rk4_at_loose);
 }
 
 #[test]

@@ -317,24 +317,25 @@ impl WorkPrecision {
         }
     }
 
-    /// What the two sweeps ran, for the caption: "h = 1 … 2⁻⁹; tolerance 10⁻² … 10⁻¹¹".
-    fn sweeps_caption(&self) -> String {
+    /// What the two sweeps ran, for the caption: "● fixed step h = 1 … 2⁻⁹;", "■ adaptive,
+    /// tolerance 10⁻² … 10⁻¹³;" (only those the curves use).
+    fn sweeps_caption(&self) -> Vec<String> {
         let levels = self.spec.levels.clamp(2, 16);
         let mut parts = Vec::new();
         if self.results.iter().any(|c| !c.adaptive) {
             parts.push(format!(
-                "● fixed step h = 1 … 2{}",
+                "● fixed step h = 1 … 2{};",
                 pow10_label(-(levels as f64 - 1.0)).trim_start_matches("10")
             ));
         }
         if self.results.iter().any(|c| c.adaptive) {
             parts.push(format!(
-                "■ adaptive, tolerance {} … {}",
+                "■ adaptive, tolerance {} … {};",
                 pow10_label(TOL_MAX.log10()),
                 pow10_label(TOL_MIN.log10())
             ));
         }
-        parts.join(";  ")
+        parts
     }
 }
 
@@ -365,16 +366,22 @@ impl SlideWidget for WorkPrecision {
             .map(|p| (p.name.clone(), p.t0))
             .unwrap_or_default();
         ui.horizontal_wrapped(|ui| {
-            ui.label(format!(
-                "{name} over t ∈ [{}, {}];  {};  best error:",
+            let mut caption = vec![format!(
+                "{name} over t ∈ [{}, {}];",
                 fmt_num(t0).trim_end_matches(".000"),
                 fmt_num(self.spec.t_end),
-                self.sweeps_caption(),
-            ));
+            )];
+            caption.extend(self.sweeps_caption());
+            caption.push("best error:".into());
+            for part in caption {
+                ui.add(egui::Label::new(part).wrap_mode(egui::TextWrapMode::Extend));
+            }
             for c in &self.results {
-                ui.colored_label(
-                    c.color,
-                    egui::RichText::new(format!("{} {}", c.name, fmt_num(c.best_error()))).strong(),
+                // whole entries move to the next row; none breaks inside
+                let txt = format!("{} {}", c.name, fmt_num(c.best_error()));
+                ui.add(
+                    egui::Label::new(egui::RichText::new(txt).strong().color(c.color))
+                        .wrap_mode(egui::TextWrapMode::Extend),
                 );
             }
         });
@@ -405,7 +412,7 @@ impl SlideWidget for WorkPrecision {
                                     .collect();
                                 // squares mark a tolerance sweep, dots a step-size sweep
                                 let (shape, radius) = if c.adaptive {
-                                    (MarkerShape::Square, 4.0)
+                                    (MarkerShape::Square, 5.0)
                                 } else {
                                     (MarkerShape::Circle, 4.5)
                                 };
