@@ -185,6 +185,73 @@ fn export_data_csv_equals_hand_written_loops() {
     assert!(rows.iter().any(|r| r.0 == "exact"));
 }
 
+#[test]
+fn export_data_and_check_handle_the_adaptive_pairs() {
+    let (dir, path) = project(&format!(
+        "Widget(SlopeField(({FORCED_INLINE}, start: (0.0, 1.5), h: 0.5, t_end: 4.0, methods: [Rk4, Dop853, Vern9]))),\n\
+         Widget(Convergence(({FORCED_INLINE}, t_end: 4.0, h_max: 1.0, levels: 4, methods: [Rk4, Dop853]))),\n\
+         Widget(WorkPrecision(({FORCED_INLINE}, t_end: 4.0, levels: 4, methods: [Rk4, Vern9], rk5: false)))"
+    ));
+    let deck = load_deck(&path).unwrap();
+    assert!(
+        deck.widget_problems.is_empty(),
+        "{:?}",
+        deck.widget_problems
+    );
+    let out = dir.path().join("out");
+    let files = lectern::cli::export_data::write_data(&deck, &out, &Default::default()).unwrap();
+    let names: Vec<_> = files.iter().map(|f| f.file_name().unwrap()).collect();
+    assert_eq!(
+        names,
+        ["slide-01-w1.csv", "slide-01-w2.csv", "slide-01-w3.csv"]
+    );
+    let text = |i: usize| std::fs::read_to_string(&files[i]).unwrap();
+    // the slope field steps DOP853's and Vern9's eighth- and ninth-order formulas at h = 0.5
+    let rows = parse_csv(&text(0));
+    let exact = |t: f64| (t.cos() + t.sin()) / 2.0 + (1.5 - 0.5) * (-t).exp();
+    for (key, tol) in [("rk4", 1e-3), ("dop853", 1e-6), ("vern9", 1e-7)] {
+        let got: Vec<_> = rows.iter().filter(|r| r.0 == key).collect();
+        assert_eq!(got.len(), 9, "{key}");
+        let last = got.last().unwrap();
+        assert!((last.2[0] - exact(last.1)).abs() < tol, "{key}: {last:?}");
+    }
+    // convergence: one row per halving, by key
+    let conv = text(1);
+    assert!(conv.starts_with("series,h,error\n"), "{conv}");
+    let dop: Vec<(f64, f64)> = conv
+        .lines()
+        .filter_map(|l| l.strip_prefix("dop853,"))
+        .map(|l| {
+            let (h, e) = l.split_once(',').unwrap();
+            (h.parse().unwrap(), e.parse().unwrap())
+        })
+        .collect();
+    assert_eq!(
+        dop.iter().map(|p| p.0).collect::<Vec<_>>(),
+        [1.0, 0.5, 0.25, 0.125]
+    );
+    // eighth order: halving h from 1 divides the error by ~2^8
+    let ratio = dop[0].1 / dop[1].1;
+    assert!((100.0..1000.0).contains(&ratio), "{dop:?}");
+    // work-precision: RK4 by step, Vern9 by tolerance, twelve of them
+    let wp = text(2);
+    assert!(
+        wp.starts_with("series,sweep,h_or_tol,f_evals,error\n"),
+        "{wp}"
+    );
+    assert_eq!(wp.lines().filter(|l| l.starts_with("rk4,h,")).count(), 4);
+    let vern9: Vec<&str> = wp.lines().filter(|l| l.starts_with("vern9,tol,")).collect();
+    assert_eq!(vern9.len(), 12, "{wp}");
+    assert!(vern9[0].starts_with("vern9,tol,0.01,"), "{}", vern9[0]);
+    // a misspelt pair stops the deck with its position and the names it could have been
+    let (_dir, bad) = project(&format!(
+        "Widget(Convergence(({FORCED_INLINE}, methods: [Rk4, Vern10])))"
+    ));
+    let e = load_deck(&bad).unwrap_err().to_string();
+    assert!(e.contains("talk.ron:") && e.contains("Vern10"), "{e}");
+    assert!(e.contains("Dop853"), "{e}");
+}
+
 /// (line, col) of the first occurrence of `needle` in `text`, 1-based, plus `offset` chars.
 fn at(text: &str, needle: &str, offset: usize) -> (usize, usize) {
     let i = text.find(needle).unwrap_or_else(|| panic!("{needle}"));

@@ -1,10 +1,11 @@
 //! `lectern export --data`: every plot widget's computed points as CSV, for students and tests to
 //! check the numbers: `DIR/slide-NN-wK.csv` (K counts the slide's widgets from 1, in file order),
 //! long format with the header `series,t,<var1>[,<var2>…]`, one row per integrator step (not the
-//! decimated draw data); series `euler`, `midpoint`, `rk4`, a tableau file's stem, and `exact`
-//! (the closed form at the reference's times) or `reference` (a fine RK4 solve, when there is no
-//! closed form). Widgets without paths (Taylor, convergence, work-precision, stability, rigid
-//! body) write no file.
+//! decimated draw data); series named by `MethodRef::key` (`euler`, `midpoint`, `rk4`, `dop853`,
+//! `vern9`, a tableau file's stem), and `exact` (the closed form at the reference's times) or
+//! `reference` (a fine RK4 solve, when there is no closed form). The convergence widget writes
+//! `series,h,error` and the work-precision widget `series,sweep,h_or_tol,f_evals,error`, one row
+//! per run. Widgets without computed points (Taylor, stability, rigid body) write no file.
 
 use std::path::{Path, PathBuf};
 
@@ -27,11 +28,11 @@ pub fn write_data(deck: &Deck, dir: &Path, tweaks: &TweakFile) -> anyhow::Result
         // warnings about stale tweaks are printed by the PNG export
         let _ = tweaks.apply(deck, i, &mut state);
         for (k, (block, _)) in slide.widgets().into_iter().enumerate() {
-            let Some(data) = state.widget_at(&block).and_then(|w| w.data()) else {
+            let Some(csv) = state.widget_at(&block).and_then(|w| w.csv()) else {
                 continue;
             };
             let file = dir.join(format!("slide-{:0digits$}-w{}.csv", i + 1, k + 1));
-            std::fs::write(&file, data.to_csv())
+            std::fs::write(&file, csv)
                 .with_context(|| format!("cannot write {}", file.display()))?;
             written.push(file);
         }

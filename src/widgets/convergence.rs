@@ -319,6 +319,19 @@ impl SlideWidget for Convergence {
     }
 
     ode_plumbing!(Convergence);
+
+    /// `series,h,error`: every run (all halvings), series by method key; diverged runs are
+    /// left out as on the plot.
+    fn csv(&mut self) -> Option<String> {
+        self.ode.problem()?;
+        let mut out = String::from("series,h,error\n");
+        for (key, _, _, pts, _, _) in self.compute() {
+            for (h, e) in pts {
+                out.push_str(&format!("{key},{h:?},{e:?}\n"));
+            }
+        }
+        Some(out)
+    }
 }
 
 #[cfg(test)]

@@ -84,6 +84,12 @@ pub trait SlideWidget: Send {
     fn data(&mut self) -> Option<PlotData> {
         None
     }
+    /// What `export --data` writes: the paths of [`SlideWidget::data`] as CSV, or a widget's
+    /// own table where its points are not paths in t (convergence: `series,h,error`;
+    /// work-precision: `series,sweep,h_or_tol,f_evals,error`).
+    fn csv(&mut self) -> Option<String> {
+        self.data().map(|d| d.to_csv())
+    }
 }
 
 /// The paths a plot widget computed, by series (`euler`, `rk4`, `exact`, a tableau's stem).

@@ -446,6 +446,24 @@ impl SlideWidget for WorkPrecision {
     }
 
     ode_plumbing!(WorkPrecision);
+
+    /// `series,sweep,h_or_tol,f_evals,error`: every run, series by method key (`rk5` for the
+    /// fixed-step fifth-order weights), `sweep` `h` or `tol`. Wall time is left out: it is the
+    /// machine's, not the method's (and a modelled one in headless exports).
+    fn csv(&mut self) -> Option<String> {
+        self.ode.problem()?;
+        let mut out = String::from("series,sweep,h_or_tol,f_evals,error\n");
+        for c in self.compute() {
+            let sweep = if c.adaptive { "tol" } else { "h" };
+            for s in &c.samples {
+                out.push_str(&format!(
+                    "{},{sweep},{:?},{},{:?}\n",
+                    c.key, s.h_or_tol, s.f_evals, s.error
+                ));
+            }
+        }
+        Some(out)
+    }
 }
 
 #[cfg(test)]
