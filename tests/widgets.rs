@@ -442,6 +442,80 @@ fn params_round_trip_through_reload_and_reset() {
     }
 }
 
+/// Wall time of the work-precision slide's whole study (what its background thread runs, with
+/// live timing: each run repeated until 2 ms or 50 times), the slide before the adaptive pairs
+/// and now. A measurement, not a test (run with `cargo test --test widgets study_time --
+/// --ignored --nocapture`); the figures are in docs/benchmarks/work-precision-slide.md.
+#[test]
+#[ignore]
+fn work_precision_study_time() {
+    use lectern::widgets::work_precision::WorkPrecision;
+    use std::time::Instant;
+    work_precision::DETERMINISTIC.store(false, Ordering::Relaxed);
+    let before =
+        "WorkPrecision((ode: File(\"problems/circle.ron\"), t_end: 10.0, levels: 10, rk5: true))";
+    let now = "WorkPrecision((ode: File(\"problems/circle.ron\"), t_end: 10.0, levels: 10, methods: [Euler, Midpoint, Rk4, Tsit5, Dop853, Vern9], rk5: true))";
+    for (name, ron_spec) in [
+        ("before (Euler, Midpoint, RK4, RK5)", before),
+        ("now (+ Tsit5, DOP853, Vern9)", now),
+    ] {
+        let WidgetSpec::WorkPrecision(spec) = spec_of(ron_spec) else {
+            unreachable!()
+        };
+        let mut secs: Vec<f64> = (0..7)
+            .map(|_| {
+                let mut w = WorkPrecision::new(spec.clone(), Some(deck_path()));
+                let t = Instant::now();
+                let curves = w.compute();
+                assert!(!curves.is_empty());
+                t.elapsed().as_secs_f64()
+            })
+            .collect();
+        secs.sort_by(f64::total_cmp);
+        println!(
+            "{name}: median {:.0} ms (min {:.0}, max {:.0}) over 7 studies",
+            secs[3] * 1e3,
+            secs[0] * 1e3,
+            secs[6] * 1e3
+        );
+    }
+    // The convergence slide computes on the UI thread within a per-frame budget: its slowest
+    // frame at the sliders' heaviest setting (12 halvings from h = 1), with the pairs ticked.
+    for (name, methods) in [
+        (
+            "without pairs",
+            "[Euler, Midpoint, Rk4, Tableau(\"tableaux/rk4-typo.ron\")]",
+        ),
+        (
+            "with DOP853, Vern9",
+            "[Euler, Midpoint, Rk4, Tableau(\"tableaux/rk4-typo.ron\"), Dop853, Vern9]",
+        ),
+    ] {
+        let spec = format!(
+            "Convergence((ode: File(\"problems/forced.ron\"), t_end: 4.0, h_max: 1.0, levels: 12, methods: {methods}))"
+        );
+        let mut w = widget(&spec);
+        let mut h = Harness::builder()
+            .with_size(SIZE)
+            .with_context_setup(|ctx| lectern::math::install_egui_fallback_fonts(ctx))
+            .build_ui(move |ui| w.ui(ui));
+        let mut frames: Vec<f64> = (0..40)
+            .map(|_| {
+                let t = Instant::now();
+                h.step();
+                t.elapsed().as_secs_f64()
+            })
+            .collect();
+        let slowest = frames.iter().copied().fold(0.0, f64::max);
+        frames.sort_by(f64::total_cmp);
+        println!(
+            "convergence {name}, 12 halvings: slowest frame {:.1} ms, median {:.2} ms over 40",
+            slowest * 1e3,
+            frames[20] * 1e3
+        );
+    }
+}
+
 /// Frame cost of the long-path widgets while the lecturer drags `h` (a new h every frame) and
 /// while nothing changes, in this build on this adapter. A measurement, not a test: it prints
 /// and asserts nothing about time (run with `cargo test --test widgets frame_cost -- --ignored

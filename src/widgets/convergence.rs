@@ -71,10 +71,11 @@ pub fn fitted_slope(pts: &[(f64, f64)]) -> Option<f64> {
     slope.is_finite().then_some(slope)
 }
 
-/// Steps (summed over methods) computed per frame at most: 12 halvings of RK4 and friends
-/// are ~10⁵ steps, spread over a few frames instead of stalling one. Whole levels are
-/// computed, at least one per frame, so the result does not depend on timing.
-const STEPS_PER_FRAME: usize = 40_000;
+/// f-evaluations (steps × stages) computed per frame at most: 12 halvings of RK4 and friends
+/// are ~10⁵ steps, and a step of Vern9 costs 16 evaluations to RK4's 4, so the work is spread
+/// over a few frames instead of stalling one. A unit is one method at one halving, computed
+/// whole (at least one per frame), so the result does not depend on timing.
+const F_EVALS_PER_FRAME: usize = 160_000;
 
 /// Per method (key, name, colour): its (h, error) points, fitted slope, and for an adaptive
 /// pair the order its slope should approach (shown beside the slope).
@@ -93,7 +94,8 @@ pub struct Convergence {
     initial: ConvergenceSpec,
     ode: LiveOde,
     methods: MethodSet,
-    /// Results for a key, complete up to `done` halvings, with the truth they compare with.
+    /// Results for a key, complete up to `done` work units (method × halving, level by level),
+    /// with the truth they compare with.
     cache: Option<(Key, Rows, usize, Vec<f64>)>,
 }
 
@@ -164,21 +166,41 @@ impl Convergence {
             let truth = truth(&p, self.spec.t_end);
             self.cache = Some((key.clone(), self.rows_empty(), 0, truth));
         }
-        let total = levels(&self.spec);
-        let n_methods = self.methods.shown().count().max(1);
-        let per_level = |k| level_steps(&self.spec, p.t0, k) * n_methods;
+        // work units: one method at one halving, level by level (so each row's points stay
+        // in order of h); `done` counts the units computed
+        let stages: Vec<usize> = self
+            .methods
+            .shown()
+            .map(|m| m.method.tableau.b.len().max(1))
+            .collect();
+        let n = stages.len().max(1);
+        let total = levels(&self.spec) * n;
+        let cost =
+            |u: usize| level_steps(&self.spec, p.t0, u / n) * stages.get(u % n).unwrap_or(&1);
         let Some((_, mut rows, done, truth)) = self.cache.take() else {
             return true;
         };
         let mut end = done;
         let mut budget = 0;
-        while end < total && (end == done || budget + per_level(end) <= STEPS_PER_FRAME) {
-            budget += per_level(end);
+        while end < total && (end == done || budget + cost(end) <= F_EVALS_PER_FRAME) {
+            budget += cost(end);
             end += 1;
         }
-        self.extend(&p, &truth, &mut rows, done..end);
+        for u in done..end {
+            let (k, i) = (u / n, u % n);
+            if let (Some(row), Some(m)) = (rows.get_mut(i), self.methods.shown().nth(i)) {
+                row.3.extend(errors_at(
+                    &self.spec,
+                    &p,
+                    &truth,
+                    m.method.scheme(),
+                    k..k + 1,
+                ));
+                row.4 = fitted_slope(&row.3);
+            }
+        }
         self.cache = Some((key, rows, end, truth));
-        end == total
+        end >= total
     }
 }
 
@@ -356,6 +378,28 @@ mod tests {
         ] {
             assert!((slope(k) - want).abs() < tol, "{k}: {}", slope(k));
         }
+    }
+
+    #[test]
+    fn frame_by_frame_study_is_bounded_and_equals_the_whole() {
+        let deck = FsPath::new(concat!(env!("CARGO_MANIFEST_DIR"), "/slides/lecture.ron"));
+        let spec = ron::from_str(
+            "(ode: File(\"problems/forced.ron\"), t_end: 4.0, h_max: 1.0, levels: 12, \
+             methods: [Euler, Rk4, Dop853, Vern9])",
+        )
+        .unwrap();
+        let mut c = Convergence::new(spec, Some(deck));
+        let whole = c.compute();
+        let mut frames = 1;
+        while !c.advance() {
+            frames += 1;
+            assert!(frames < 100);
+        }
+        // 4·(2¹² − 1) steps × 33 stages ≈ 540 000 evaluations: several frames, each within
+        // the budget (or one unit)
+        assert!(frames >= 4, "{frames}");
+        let (_, rows, _, _) = c.cache.as_ref().unwrap();
+        assert_eq!(*rows, whole);
     }
 
     #[test]
