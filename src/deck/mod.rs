@@ -1,12 +1,15 @@
 //! Decks: the slide model as written in `slides/*.ron`, loading with file positions, and
 //! navigation state.
 
+pub mod ink;
+mod ink_file;
 mod load;
 mod model;
 pub mod nav;
 mod session;
 pub mod write_back;
 
+pub use ink_file::InkFile;
 pub use load::{load_deck, parse_deck, parse_deck_file};
 pub use model::{Aspect, Block, BookmarkDecl, Deck, Layout, Slide, Theme};
 pub use nav::Nav;

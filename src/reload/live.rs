@@ -85,6 +85,12 @@ impl<T> LiveFile<T> {
         self.holder.generation()
     }
 
+    /// Tells the holder that the app itself just wrote `text` to the file (files the app edits,
+    /// like ink): the watcher's echo of that write is then not a reload.
+    pub fn note_written(&mut self, text: String) {
+        self.last_text = Some(text);
+    }
+
     /// Whether any of `changed` (as reported by a [`super::DirWatcher`]) is this file.
     pub fn is_affected_by(&self, changed: &[PathBuf]) -> bool {
         changed.iter().any(|p| absolute(p) == self.abs_path)
