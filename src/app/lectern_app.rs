@@ -8,11 +8,13 @@
 use std::path::PathBuf;
 use std::time::Duration;
 
+use super::ink::InkState;
+use super::ink_draw::paint_on_slide;
 use super::offscreen::OffscreenRenderer;
 use super::overlays;
 use super::pacing::Pacing;
 use super::screens::{MonitorRect, ScreenPlan};
-use super::slide_view::{DeckState, SlideState, black_ui, slide_ui};
+use super::slide_view::{DeckState, SlideOptions, SlideState, black_ui, slide_ui_with};
 use super::theme::Palette;
 use super::tweaks::Bookmarks;
 use crate::deck::{DeckSession, Nav};
@@ -66,10 +68,13 @@ pub struct LecternApp {
     pub(super) screen_plan: ScreenPlan,
     /// The audience window was sent to its monitor.
     pub(super) placed: bool,
+    /// Ink on the slides (`DECK.ink.ron`) and the drawing tools.
+    pub(super) ink: InkState,
 }
 
 impl LecternApp {
     pub fn new(session: DeckSession) -> Self {
+        let ink = InkState::for_deck(session.path());
         Self {
             states: DeckState::default(),
             mode: Mode::Slides,
@@ -91,6 +96,7 @@ impl LecternApp {
             screens: Vec::new(),
             screen_plan: ScreenPlan::Single,
             placed: false,
+            ink,
         }
     }
 
@@ -125,9 +131,18 @@ impl LecternApp {
         self.black
     }
 
+    /// The ink and the drawing tools.
+    pub fn ink(&self) -> &InkState {
+        &self.ink
+    }
+
     /// Applies file changes seen by the watcher. Cheap when nothing changed.
     pub fn pump_reload(&mut self) {
-        if let Some(Reloaded::Updated) = self.session.pump() {
+        let (changed, outcome) = self.session.pump_changes();
+        if !changed.is_empty() {
+            self.ink.on_changes(&changed);
+        }
+        if let Some(Reloaded::Updated) = outcome {
             self.states.retain_deck(self.session.deck());
             self.session.take_replaced();
             self.pacing
@@ -164,9 +179,24 @@ impl LecternApp {
             }
             (Mode::Slides, _) => {
                 let slide = &deck.slides[index];
-                let resp = slide_ui(ui, deck, index, self.states.slide(slide));
-                if resp.background.clicked() && self.overlay == Overlay::None {
+                let now = ctx.input(|i| i.time);
+                let drawing = self.ink.is_drawing() && self.overlay == Overlay::None;
+                let options = SlideOptions {
+                    drawing,
+                    ..SlideOptions::default()
+                };
+                let resp = slide_ui_with(ui, deck, index, self.states.slide(slide), options);
+                let (key, theme) = (slide.key().to_owned(), deck.theme);
+                // The pointer first, then the ink: a stroke shows in the frame it is drawn.
+                let mut said = None;
+                if drawing {
+                    said = self.ink.input_ui(&ctx, &key, &resp);
+                } else if resp.background.clicked() && self.overlay == Overlay::None {
                     self.session.navigate(|nav, deck| nav.next(deck));
+                }
+                paint_on_slide(ui, &resp, theme, &self.ink.view(&key, now));
+                if let Some(msg) = said {
+                    self.say(&ctx, msg);
                 }
             }
             (Mode::Scene, _) => self.scene_ui(ui, &palette),

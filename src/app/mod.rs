@@ -5,6 +5,8 @@ mod actions;
 mod blocks;
 mod files;
 mod images;
+pub mod ink;
+pub mod ink_draw;
 pub mod keys;
 mod lectern_app;
 pub mod offscreen;

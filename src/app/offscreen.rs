@@ -167,8 +167,20 @@ impl OffscreenRenderer {
         state: &mut SlideState,
         size: [u32; 2],
     ) -> Result<RgbaImage, OffscreenError> {
+        self.render_slide_with(deck, index, state, size, SlideOptions::default())
+    }
+
+    /// Slide `index` of `deck` at `size` pixels, drawn with `options` (e.g. with its ink).
+    pub fn render_slide_with(
+        &mut self,
+        deck: &Deck,
+        index: usize,
+        state: &mut SlideState,
+        size: [u32; 2],
+        options: SlideOptions,
+    ) -> Result<RgbaImage, OffscreenError> {
         self.render(size, 1.0, |ui| {
-            slide_ui_with(ui, deck, index, state, SlideOptions::default());
+            slide_ui_with(ui, deck, index, state, options);
         })
     }
 

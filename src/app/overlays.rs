@@ -131,6 +131,7 @@ pub fn overview_ui(
         let options = SlideOptions {
             footer: true,
             letterbox: false,
+            ..SlideOptions::default()
         };
         slide_ui_with(&mut child, deck, i, states.slide(slide), options);
         // On top of the thumbnail's widgets: a click anywhere picks the slide.

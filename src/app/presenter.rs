@@ -4,8 +4,9 @@
 
 use egui::{Color32, Rect, RichText, UiBuilder, vec2};
 
+use super::ink_draw::InkView;
 use super::pacing::{PaceReport, clock};
-use super::slide_view::{DeckState, SlideOptions, slide_ui_with};
+use super::slide_view::{DeckState, SlideOptions, SlideResponse, slide_ui_with};
 use super::theme::{self, Palette};
 use crate::deck::{Deck, Theme};
 
@@ -15,6 +16,11 @@ pub struct PresenterInfo<'a> {
     pub problems: &'a [String],
     /// Labels of the bookmarks set (key, label).
     pub bookmarks: &'a [(u8, String)],
+    /// Ink on the next slide. (The current slide's is painted by the caller, after it has
+    /// taken the pointer: see [`presenter_ui`]'s result.)
+    pub ink_next: InkView<'a>,
+    /// A drawing tool is on: the current slide takes the pointer for ink.
+    pub drawing: bool,
 }
 
 /// In scene mode: the scene's control panel, which takes the place of the current slide.
@@ -27,7 +33,8 @@ pub fn presenter_ui(
     states: &mut DeckState,
     info: &PresenterInfo,
     scene: Option<SceneControls>,
-) {
+) -> Option<SlideResponse> {
+    let mut now_response = None;
     theme::install_fonts(ui.ctx());
     let palette = Palette::of(Theme::Dark);
     let full = ui.available_rect_before_wrap();
@@ -81,13 +88,16 @@ pub fn presenter_ui(
         if let Some(slide) = deck.slides.get(index) {
             let mut child =
                 ui.new_child(UiBuilder::new().id_salt("presenter-now").max_rect(now_rect));
-            slide_ui_with(
+            now_response = Some(slide_ui_with(
                 &mut child,
                 deck,
                 index,
                 states.slide(slide),
-                SlideOptions::default(),
-            );
+                SlideOptions {
+                    drawing: info.drawing,
+                    ..SlideOptions::default()
+                },
+            ));
             let controls =
                 Rect::from_min_max(egui::pos2(left.min.x, now_rect.max.y + pad), left.max);
             let mut child = ui.new_child(
@@ -129,7 +139,10 @@ pub fn presenter_ui(
             deck,
             index + 1,
             states.slide(next),
-            SlideOptions::default(),
+            SlideOptions {
+                ink: info.ink_next,
+                ..SlideOptions::default()
+            },
         );
         // The next slide is a preview: a click must not reach its widgets.
         ui.interact(
@@ -250,6 +263,7 @@ pub fn presenter_ui(
         }
     });
     ui.advance_cursor_after_rect(full);
+    now_response
 }
 
 fn heading(ui: &egui::Ui, at: egui::Pos2, label: &str, size: f32, palette: &Palette) {

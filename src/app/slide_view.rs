@@ -7,6 +7,7 @@ use std::collections::HashMap;
 use egui::{Align, Color32, Rect, Sense, Stroke, UiBuilder, Vec2, vec2};
 
 use super::blocks::{self, BlockCtx};
+use super::ink_draw::{InkView, paint_on_slide};
 use super::theme::{self, Look, Palette, fit_canvas, size};
 use crate::deck::{Block, Deck, Layout, Slide};
 use crate::widgets::{ParamSnapshot, SlideWidget, WidgetSpec, params};
@@ -234,18 +235,26 @@ impl DeckState {
 
 /// How a slide is drawn besides its content.
 #[derive(Debug, Clone, Copy)]
-pub struct SlideOptions {
+pub struct SlideOptions<'a> {
     /// Page number and deck title at the bottom.
     pub footer: bool,
     /// Fill the space around the canvas (when the shapes differ) with the letterbox colour.
     pub letterbox: bool,
+    /// Ink painted over the slide. (The live windows paint theirs after taking this frame's
+    /// pointer input instead, with [`paint_on_slide`], so a stroke shows the frame it is drawn.)
+    pub ink: InkView<'a>,
+    /// A tool is drawing: the canvas takes every click and drag (see [`SlideResponse::ink`]),
+    /// so neither the slide's widgets nor "click to advance" see them.
+    pub drawing: bool,
 }
 
-impl Default for SlideOptions {
+impl Default for SlideOptions<'_> {
     fn default() -> Self {
         Self {
             footer: true,
             letterbox: true,
+            ink: InkView::default(),
+            drawing: false,
         }
     }
 }
@@ -258,6 +267,8 @@ pub struct SlideResponse {
     pub scale: f32,
     /// The slide's background: `clicked()` is a click that hit no widget.
     pub background: egui::Response,
+    /// While drawing: the whole canvas, on top of its widgets, sensing clicks and drags.
+    pub ink: Option<egui::Response>,
 }
 
 /// Draws slide `index` of `deck` into all the space `ui` has left, with default options.
@@ -306,6 +317,7 @@ pub fn slide_ui_with(
             canvas,
             scale,
             background,
+            ink: None,
         };
     };
     let inner = Rect::from_min_max(
@@ -338,11 +350,22 @@ pub fn slide_ui_with(
     if options.footer && slide.layout == Layout::Content {
         footer_ui(ui, deck, index, canvas, &look);
     }
-    SlideResponse {
+    // Registered after the content, so it is on top: while drawing it takes the pointer.
+    let ink = options.drawing.then(|| {
+        ui.interact(
+            canvas,
+            ui.scope_id().with(("slide-ink", index)),
+            Sense::click_and_drag(),
+        )
+    });
+    let resp = SlideResponse {
         canvas,
         scale,
         background,
-    }
+        ink,
+    };
+    paint_on_slide(ui, &resp, deck.theme, &options.ink);
+    resp
 }
 
 fn content_slide_ui(ui: &mut egui::Ui, slide: &Slide, bctx: &BlockCtx, state: &mut SlideState) {

@@ -4,9 +4,11 @@ use std::path::PathBuf;
 
 use anyhow::Context as _;
 
+use crate::app::ink_draw::InkView;
 use crate::app::tweak_file::TweakFile;
-use crate::app::{OffscreenRenderer, SlideState};
-use crate::deck::load_deck;
+use crate::app::{OffscreenRenderer, SlideOptions, SlideState};
+use crate::deck::ink::Ink;
+use crate::deck::{InkFile, load_deck};
 
 /// Render every slide to PNG, headless (any GPU, or Mesa's software adapter).
 #[derive(Debug, clap::Args)]
@@ -23,6 +25,10 @@ pub struct Args {
     /// `Ctrl+S` while presenting), so the images show exactly what was presented.
     #[arg(long, value_name = "FILE")]
     pub with_tweaks: Option<PathBuf>,
+    /// Leave out the ink drawn while presenting (`DECK.ink.ron` beside the deck, drawn by
+    /// default so the handout shows what the class saw).
+    #[arg(long)]
+    pub no_ink: bool,
 }
 
 /// "1920x1080" → [1920, 1080].
@@ -52,6 +58,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     for key in tweaks.unknown_slides(&deck) {
         eprintln!("lectern: warning: the tweaks are for slide {key:?}, which the deck lacks");
     }
+    let ink = if args.no_ink {
+        Ink::default()
+    } else {
+        load_ink(&path, &deck)
+    };
     // A still image cannot wait for a background study: work-precision runs on this thread
     // (timings then from a fixed cost per f-evaluation, so exports are reproducible).
     crate::widgets::work_precision::DETERMINISTIC.store(true, std::sync::atomic::Ordering::Relaxed);
@@ -64,7 +75,14 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         for problem in tweaks.apply(&deck, index, &mut state) {
             eprintln!("lectern: warning: {problem}");
         }
-        let image = renderer.render_slide(&deck, index, &mut state, args.size)?;
+        let options = SlideOptions {
+            ink: InkView {
+                strokes: ink.strokes(deck.slides[index].key()),
+                ..InkView::default()
+            },
+            ..SlideOptions::default()
+        };
+        let image = renderer.render_slide_with(&deck, index, &mut state, args.size, options)?;
         let file = args.out.join(format!("slide-{:0digits$}.png", index + 1));
         image
             .save(&file)
@@ -80,4 +98,18 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         renderer.adapter_name()
     );
     Ok(())
+}
+
+/// The ink beside the deck; a damaged file is a warning and no ink, never a failed export.
+fn load_ink(deck_path: &std::path::Path, deck: &crate::deck::Deck) -> Ink {
+    let file = InkFile::for_deck(deck_path);
+    if let Some(problem) = file.problem() {
+        eprintln!("lectern: warning: ink left out: {problem}");
+    }
+    for key in file.ink().slides.keys() {
+        if deck.find(key).is_none() {
+            eprintln!("lectern: warning: ink for slide {key:?}, which the deck lacks");
+        }
+    }
+    file.ink().clone()
 }
