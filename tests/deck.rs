@@ -168,3 +168,63 @@ fn slides_without_ids_are_followed_by_title() {
     nav.on_reload(&new);
     assert_eq!(nav.index(), 2);
 }
+
+/// Every string literal in a RON tree, except inside fields named in `private` (speaker notes
+/// are the lecturer's own; everything else can reach the audience: titles, text, bullets,
+/// maths, widget labels, the names of tableaux and problems shown in legends).
+fn audience_strings(node: &lectern::ron_tree::Node, private: &[&str], out: &mut Vec<String>) {
+    use lectern::ron_tree::Value;
+    match &node.value {
+        Value::Str { value, .. } => out.push(value.clone()),
+        Value::Struct { fields, .. } => {
+            for f in fields
+                .iter()
+                .filter(|f| !private.contains(&f.name.as_str()))
+            {
+                audience_strings(&f.value, private, out);
+            }
+        }
+        Value::Seq { items, .. } | Value::List(items) => {
+            for item in items {
+                audience_strings(item, private, out);
+            }
+        }
+        Value::Map(entries) => {
+            for (k, v) in entries {
+                audience_strings(k, private, out);
+                audience_strings(v, private, out);
+            }
+        }
+        Value::Ident(_) | Value::Number(_) | Value::Char(_) => {}
+    }
+}
+
+#[test]
+fn nothing_the_audience_sees_mentions_our_errata() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("slides");
+    let mut files = bundled_decks();
+    for sub in ["problems", "tableaux"] {
+        for entry in std::fs::read_dir(root.join(sub)).unwrap() {
+            files.push(entry.unwrap().path());
+        }
+    }
+    let mut checked = 0;
+    for file in files
+        .iter()
+        .filter(|p| p.extension().is_some_and(|e| e == "ron"))
+    {
+        let text = std::fs::read_to_string(file).unwrap();
+        let tree = lectern::ron_tree::parse(&text).unwrap();
+        let mut strings = Vec::new();
+        audience_strings(&tree, &["notes"], &mut strings);
+        checked += strings.len();
+        for s in strings {
+            assert!(
+                !s.to_lowercase().contains("errata"),
+                "{}: audience-visible text mentions the errata: {s:?}",
+                file.display()
+            );
+        }
+    }
+    assert!(checked > 100, "the walk found only {checked} strings");
+}

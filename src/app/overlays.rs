@@ -149,6 +149,19 @@ pub fn overview_ui(
         };
         ui.painter()
             .rect_stroke(rect, 0.0, stroke, egui::StrokeKind::Outside);
+        if slide.skip {
+            // optional slides: reachable from here, passed over by paging
+            let tag = (rect.height() / 9.0).clamp(9.0, 20.0);
+            let galley = ui.painter().layout_no_wrap(
+                "optional".into(),
+                egui::FontId::proportional(tag),
+                palette.text,
+            );
+            let at = rect.left_top() + egui::vec2(tag * 0.4, tag * 0.3);
+            let bg = egui::Rect::from_min_size(at, galley.size()).expand(tag * 0.25);
+            ui.painter().rect_filled(bg, tag * 0.2, palette.letterbox);
+            ui.painter().galley(at, galley, palette.text);
+        }
         if resp.clicked() {
             clicked = Some(i);
         }

@@ -144,7 +144,7 @@ impl Pacing {
 fn budgets(deck: &Deck) -> Vec<f64> {
     deck.slides
         .iter()
-        .map(|s| s.seconds.unwrap_or(0.0) as f64)
+        .map(|s| s.planned_secs() as f64)
         .collect()
 }
 

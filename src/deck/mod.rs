@@ -7,6 +7,7 @@ mod load;
 mod model;
 pub mod nav;
 mod session;
+pub mod widgets;
 pub mod write_back;
 
 pub use ink_file::InkFile;

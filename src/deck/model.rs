@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use serde::{Deserialize, Serialize};
 
-use crate::widgets::WidgetSpec;
+use super::widgets::WidgetSpec;
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Deck {
@@ -70,12 +70,25 @@ pub struct Slide {
     /// Planned time for this slide.
     #[serde(default)]
     pub seconds: Option<f32>,
+    /// An optional slide: paging (→, ←, Space, clicker) passes over it, but `G n`, the overview
+    /// and bookmarks reach it, and its time is not part of the plan.
+    #[serde(default)]
+    pub skip: bool,
 }
 
 impl Slide {
     /// What identifies the slide across reloads: its id, else its title.
     pub fn key(&self) -> &str {
         self.id.as_deref().unwrap_or(&self.title)
+    }
+
+    /// The seconds this slide adds to the planned talk (none for a skipped slide).
+    pub fn planned_secs(&self) -> f32 {
+        if self.skip {
+            0.0
+        } else {
+            self.seconds.unwrap_or(0.0)
+        }
     }
 }
 
@@ -130,7 +143,7 @@ pub struct BookmarkDecl {
 impl Deck {
     /// The planned length of the talk: the sum of the slides' budgets.
     pub fn planned_secs(&self) -> f32 {
-        self.slides.iter().filter_map(|s| s.seconds).sum()
+        self.slides.iter().map(Slide::planned_secs).sum()
     }
 
     /// The index of the slide whose [`Slide::key`] is `key`.

@@ -44,22 +44,39 @@ impl Nav {
         self.index + 1 >= self.len
     }
 
-    /// Moves forward one slide; at the end it stays. Returns whether it moved.
+    /// Moves forward to the next slide that is not marked `skip`; at the end it stays.
+    /// Returns whether it moved.
     pub fn next(&mut self, deck: &Deck) -> bool {
-        self.go(deck, self.index.saturating_add(1))
+        match (self.index + 1..deck.slides.len()).find(|&i| !deck.slides[i].skip) {
+            Some(i) => self.go(deck, i),
+            None => false,
+        }
     }
 
-    /// Moves back one slide; at the start it stays. Returns whether it moved.
+    /// Moves back to the previous slide that is not marked `skip`; at the start it stays.
+    /// Returns whether it moved.
     pub fn prev(&mut self, deck: &Deck) -> bool {
-        self.go(deck, self.index.saturating_sub(1))
+        let upto = self.index.min(deck.slides.len());
+        match (0..upto).rev().find(|&i| !deck.slides[i].skip) {
+            Some(i) => self.go(deck, i),
+            None => false,
+        }
     }
 
+    /// The first slide that is not skipped (the first slide if all are).
     pub fn first(&mut self, deck: &Deck) -> bool {
-        self.go(deck, 0)
+        let i = deck.slides.iter().position(|s| !s.skip).unwrap_or(0);
+        self.go(deck, i)
     }
 
+    /// The last slide that is not skipped (the last slide if all are).
     pub fn last(&mut self, deck: &Deck) -> bool {
-        self.go(deck, self.len.saturating_sub(1))
+        let i = deck
+            .slides
+            .iter()
+            .rposition(|s| !s.skip)
+            .unwrap_or(deck.slides.len().saturating_sub(1));
+        self.go(deck, i)
     }
 
     /// Jumps to 0-based `index`, clamped into the deck. Returns whether it moved.
@@ -111,10 +128,14 @@ mod tests {
     use crate::deck::parse_deck;
     use std::path::Path;
 
+    /// A deck of slides with these ids; an id ending in `?` is a `skip: true` slide.
     fn deck(keys: &[&str]) -> Deck {
         let slides: Vec<String> = keys
             .iter()
-            .map(|k| format!("(id: \"{k}\", title: \"Slide {k}\")"))
+            .map(|k| match k.strip_suffix('?') {
+                Some(k) => format!("(id: \"{k}\", title: \"Slide {k}\", skip: true, seconds: 60)"),
+                None => format!("(id: \"{k}\", title: \"Slide {k}\", seconds: 10)"),
+            })
             .collect();
         parse_deck(
             &format!("(title: \"t\", slides: [{}])", slides.join(",")),
@@ -133,5 +154,28 @@ mod tests {
         assert!(!nav.next(&d));
         assert_eq!(nav.index(), 2);
         assert!(nav.is_last());
+    }
+
+    #[test]
+    fn paging_passes_over_skipped_slides_but_jumps_reach_them() {
+        let d = deck(&["a?", "b", "c?", "d?", "e", "f?"]);
+        assert_eq!(d.planned_secs(), 20.0, "skipped slides are not in the plan");
+        let mut nav = Nav::new(&d);
+        assert!(nav.first(&d));
+        assert_eq!(nav.index(), 1);
+        assert!(nav.next(&d));
+        assert_eq!(nav.index(), 4, "c and d are passed over");
+        assert!(!nav.next(&d), "f is skipped: e is the end when paging");
+        assert!(nav.prev(&d));
+        assert_eq!(nav.index(), 1);
+        assert!(!nav.prev(&d));
+        // a jump reaches a skipped slide, and paging continues from there
+        nav.goto_number(&d, 3).unwrap();
+        assert_eq!(nav.index(), 2);
+        assert!(nav.next(&d));
+        assert_eq!(nav.index(), 4);
+        nav.first(&d);
+        assert!(nav.last(&d));
+        assert_eq!(nav.index(), 4);
     }
 }

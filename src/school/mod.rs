@@ -7,6 +7,7 @@
 //! the 27 cells around each fish) and [`School::integrate`] (velocity, position, orientation,
 //! tail phase).
 
+pub mod frames;
 pub mod grid;
 mod integrate;
 pub mod rng;

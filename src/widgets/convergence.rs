@@ -3,53 +3,12 @@
 //! Include the notes' RK4 typo (ERRATA 1) to watch fourth order collapse to first.
 
 use egui_plot::{Line, Plot, PlotPoint, Points, Text};
-use serde::{Deserialize, Serialize};
 
 use super::methods::{MethodId, steps_for};
-use super::problems::Field1;
 use super::style::{self, fmt_num};
 use super::{Param, SlideWidget};
+use crate::deck::widgets::ConvergenceSpec;
 use crate::ode::study;
-
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ConvergenceSpec {
-    #[serde(default = "default_field")]
-    pub field: Field1,
-    #[serde(default = "default_x0")]
-    pub x0: f64,
-    #[serde(default = "default_t_end")]
-    pub t_end: f64,
-    /// Largest step; each further point halves it.
-    #[serde(default = "default_h_max")]
-    pub h_max: f64,
-    #[serde(default = "default_levels")]
-    pub levels: usize,
-    #[serde(default = "default_methods")]
-    pub methods: Vec<MethodId>,
-    /// Also show the notes' RK4 with the k4 typo.
-    #[serde(default)]
-    pub typo: bool,
-}
-
-fn default_field() -> Field1 {
-    Field1::Forced
-}
-fn default_x0() -> f64 {
-    1.5
-}
-fn default_t_end() -> f64 {
-    4.0
-}
-fn default_h_max() -> f64 {
-    0.5
-}
-fn default_levels() -> usize {
-    8
-}
-fn default_methods() -> Vec<MethodId> {
-    vec![MethodId::Euler, MethodId::Midpoint, MethodId::Rk4]
-}
 
 /// Below this, errors are round-off, not truncation: left out of the fit.
 const ERR_FLOOR: f64 = 1e-13;
@@ -300,6 +259,7 @@ impl SlideWidget for Convergence {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::deck::widgets::Field1;
 
     #[test]
     fn measured_slopes_are_the_orders_and_the_typo_drops_to_one() {

@@ -2,23 +2,10 @@
 //! `Tableau` through `ode::solve_tableau`), and drawable fixed-step paths that stop cleanly when
 //! a solution blows up (`Outcome::Diverged`).
 
-use serde::{Deserialize, Serialize};
-
 use std::sync::OnceLock;
 
+pub use crate::deck::widgets::MethodId;
 use crate::ode::{Method, Outcome, Scheme, Solution, System, Tableau, solve_fixed, solve_tableau};
-
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
-pub enum MethodId {
-    Euler,
-    Midpoint,
-    Heun,
-    Rk4,
-    /// The lecture notes' RK4 with the typo `k4 = h f(x0 + k3/2)` (ERRATA 1): order drops.
-    Rk4Typo,
-    /// The exact solution (or a fine reference), drawn for comparison.
-    Exact,
-}
 
 impl MethodId {
     pub const INTEGRATORS: [MethodId; 3] = [MethodId::Euler, MethodId::Midpoint, MethodId::Rk4];

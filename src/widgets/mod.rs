@@ -1,13 +1,11 @@
 //! Slide widgets: live plots and views computed by the project's own integrators.
 //!
-//! Each widget lives in its own file: a `*Spec` (what the deck file says, and also the live,
-//! tweakable state) and a widget struct that owns the spec, caches keyed by it, and draws with
-//! `ui`. Tweaks made during the talk are plain values inside the spec, listed by
+//! Each widget lives in its own file: a widget struct that owns its spec (from
+//! [`crate::deck::widgets`]: what the deck file says, and also the live, tweakable state), caches
+//! keyed by it, and draws with `ui`. Tweaks made during the talk are plain values inside the spec, listed by
 //! [`SlideWidget::params`] under stable ids, so the presenter view can show them, keep them
 //! across reloads ([`params::snapshot`] / [`params::restore`]) and write them back to the deck
 //! ([`SlideWidget::spec`]).
-
-use serde::{Deserialize, Serialize};
 
 /// Implements the spec/reset plumbing shared by every widget whose live values are its spec
 /// (`self.spec`, deck values in `self.initial`).
@@ -36,31 +34,8 @@ pub mod style;
 pub mod taylor;
 pub mod work_precision;
 
-pub use methods::MethodId;
+pub use crate::deck::widgets::{MethodId, WidgetSpec};
 pub use params::{Param, ParamSnapshot, ParamValue};
-
-/// Which widget a slide shows, with its parameters from the deck file.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub enum WidgetSpec {
-    /// 1. Slope field of ẋ = f(x, t) or a phase plane, with Euler / midpoint / RK4 / exact paths.
-    SlopeField(slope_field::SlopeFieldSpec),
-    /// 2. One step of Euler, midpoint and RK4, built up stage by stage.
-    StepConstruction(step_construction::StepSpec),
-    /// 3. Euler turns the circle x'' = −x into a spiral (the "inaccuracy" picture).
-    Spiral(spiral::SpiralSpec),
-    /// 4. "Off to Neptune": y' = λy or the oscillator with h across the stability limit.
-    Neptune(neptune::NeptuneSpec),
-    /// 5. Taylor polynomials of order 1, 2, 3, … around a point.
-    Taylor(taylor::TaylorSpec),
-    /// 6. Global error vs h on log–log axes with fitted slopes.
-    Convergence(convergence::ConvergenceSpec),
-    /// 7. Work–precision: error vs f-evaluations and vs time, computed in the background.
-    WorkPrecision(work_precision::WorkPrecisionSpec),
-    /// 8. Stability regions |R(z)| ≤ 1 in the complex plane.
-    Stability(stability::StabilitySpec),
-    /// 9. A tumbling box near its intermediate axis (the Dzhanibekov flip).
-    RigidBody(rigid_body::RigidBodySpec),
-}
 
 /// A widget's live state; created from its spec, kept while the slide is on screen.
 pub trait SlideWidget: Send {
@@ -94,21 +69,6 @@ impl WidgetSpec {
             WidgetSpec::WorkPrecision(s) => Box::new(work_precision::WorkPrecision::new(s.clone())),
             WidgetSpec::Stability(s) => Box::new(stability::Stability::new_in(s.clone(), base_dir)),
             WidgetSpec::RigidBody(s) => Box::new(rigid_body::RigidBodyView::new(s.clone())),
-        }
-    }
-
-    /// A short name for lists and snapshot files.
-    pub fn kind(&self) -> &'static str {
-        match self {
-            WidgetSpec::SlopeField(_) => "slope-field",
-            WidgetSpec::StepConstruction(_) => "step-construction",
-            WidgetSpec::Spiral(_) => "spiral",
-            WidgetSpec::Neptune(_) => "neptune",
-            WidgetSpec::Taylor(_) => "taylor",
-            WidgetSpec::Convergence(_) => "convergence",
-            WidgetSpec::WorkPrecision(_) => "work-precision",
-            WidgetSpec::Stability(_) => "stability",
-            WidgetSpec::RigidBody(_) => "rigid-body",
         }
     }
 }

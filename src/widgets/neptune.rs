@@ -3,47 +3,12 @@
 //! scale; a path that leaves them ends in a red "diverged" marker, never NaN or a crash.
 
 use egui_plot::{Line, MarkerShape, Plot, PlotPoint, Points, Text};
-use serde::{Deserialize, Serialize};
 
 use super::methods::{MethodId, Path, fixed_path, steps_for};
-use super::problems::{Field1, Field2};
 use super::stability::{C, stable_h_limit};
 use super::style::{self, fmt_num};
 use super::{Param, SlideWidget};
-
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub enum NeptuneProblem {
-    /// y' = λy with real λ < 0 (e.g. −5): decays; explicit methods blow up beyond their limit.
-    Decay { lambda: f64 },
-    /// x'' = −x: every Euler step gains energy; RK4 holds up to h = 2√2.
-    Oscillator,
-}
-
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct NeptuneSpec {
-    pub problem: NeptuneProblem,
-    #[serde(default = "default_h")]
-    pub h: f64,
-    #[serde(default = "default_t_end")]
-    pub t_end: f64,
-    #[serde(default = "yes")]
-    pub euler: bool,
-    #[serde(default)]
-    pub midpoint: bool,
-    #[serde(default)]
-    pub rk4: bool,
-}
-
-fn default_h() -> f64 {
-    0.3
-}
-fn default_t_end() -> f64 {
-    6.0
-}
-fn yes() -> bool {
-    true
-}
+use crate::deck::widgets::{Field1, Field2, NeptuneProblem, NeptuneSpec};
 
 const H_RANGE: (f64, f64) = (0.01, 3.5);
 /// The view shows |y| up to this multiple of the initial value.

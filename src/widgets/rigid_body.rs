@@ -8,62 +8,13 @@
 //! formulas are the rigid-body core's, the same code the water scene's floating bodies use.
 
 use glam::{DMat3, DVec3};
-use serde::{Deserialize, Serialize};
 
 use super::style::{self, fmt_num};
 use super::{Param, SlideWidget};
+use crate::deck::widgets::RigidBodySpec;
 use crate::rigid::{
     Integrator, MassProperties, NoForces, RigidBody, TriMesh, mirtich, point_lattice,
 };
-
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RigidBodySpec {
-    /// Principal moments of the body (the diag(1, 2, 3)).
-    #[serde(default = "default_i")]
-    pub inertia: (f64, f64, f64),
-    /// Initial angular velocity in body axes: mostly about the intermediate axis.
-    #[serde(default = "default_omega")]
-    pub omega0: (f64, f64, f64),
-    #[serde(default = "default_h")]
-    pub h: f64,
-    /// Simulated time shown (advances while `playing`).
-    #[serde(default)]
-    pub t: f64,
-    #[serde(default = "yes")]
-    pub playing: bool,
-    /// Simulated seconds per real second.
-    #[serde(default = "default_speed")]
-    pub speed: f64,
-    /// Points per axis for the inertia approximation.
-    #[serde(default = "default_n")]
-    pub n: usize,
-    /// The integrators shown side by side, in this order.
-    #[serde(default = "default_methods")]
-    pub methods: Vec<Integrator>,
-}
-
-fn default_i() -> (f64, f64, f64) {
-    (1.0, 2.0, 3.0)
-}
-fn default_omega() -> (f64, f64, f64) {
-    (0.02, 2.0, 0.02)
-}
-fn default_h() -> f64 {
-    0.02
-}
-fn default_speed() -> f64 {
-    2.0
-}
-fn default_n() -> usize {
-    4
-}
-fn default_methods() -> Vec<Integrator> {
-    Integrator::ALL.to_vec()
-}
-fn yes() -> bool {
-    true
-}
 
 /// Steps a frame may take per method; beyond it the view lags rather than stalls the UI.
 const MAX_STEPS_PER_FRAME: usize = 1000;
@@ -405,6 +356,7 @@ impl SlideWidget for RigidBodyView {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::deck::widgets::rigid_body::default_methods;
 
     fn view(h: f64, t: f64) -> RigidBodyView {
         let mut v = RigidBodyView::new(RigidBodySpec {

@@ -3,57 +3,15 @@
 //! slider or `-`/`+`; the global error of each method at the end of the interval is printed live.
 
 use egui_plot::{Arrows, Line, Plot, PlotPoint, PlotPoints, Points};
-use serde::{Deserialize, Serialize};
 
 use super::methods::{
     MAX_DRAWN_POINTS, MAX_STEP_MARKERS, MethodId, Path, decimate, fixed_path, steps_for,
 };
-use super::problems::{Field1, Field2, reference_path};
+use super::problems::reference_path;
 use super::style::{self, fmt_num};
 use super::{Param, SlideWidget};
+use crate::deck::widgets::{FieldKind, SlopeFieldSpec};
 use crate::ode::System;
-
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub enum FieldKind {
-    /// ẋ = f(x, t), drawn in the t–x plane; `start` is (t₀, x₀).
-    OneD(Field1),
-    /// (ẋ, ẏ) = f(x, y), drawn in the phase plane; `start` is (x₀, y₀).
-    Phase(Field2),
-}
-
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct SlopeFieldSpec {
-    pub field: FieldKind,
-    pub start: (f64, f64),
-    #[serde(default = "default_h")]
-    pub h: f64,
-    /// End of the integration: a time for both kinds (for `OneD`, the right edge of the path).
-    pub t_end: f64,
-    /// Visible window: (x_min, x_max, y_min, y_max) in plot coordinates.
-    pub view: (f64, f64, f64, f64),
-    #[serde(default = "yes")]
-    pub euler: bool,
-    #[serde(default = "yes")]
-    pub midpoint: bool,
-    #[serde(default = "yes")]
-    pub rk4: bool,
-    #[serde(default = "yes")]
-    pub exact: bool,
-    /// Slope marks per axis.
-    #[serde(default = "default_grid")]
-    pub grid: usize,
-}
-
-fn default_h() -> f64 {
-    0.5
-}
-fn default_grid() -> usize {
-    21
-}
-fn yes() -> bool {
-    true
-}
 
 const H_RANGE: (f64, f64) = (0.01, 2.0);
 const MAX_STEPS: usize = 20_000;
@@ -393,6 +351,7 @@ impl SlideWidget for SlopeField {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::deck::widgets::{Field1, Field2};
 
     fn spec(h: f64) -> SlopeFieldSpec {
         SlopeFieldSpec {

@@ -3,34 +3,11 @@
 //! lecture scale. The radius after each revolution is printed under each panel.
 
 use egui_plot::{Line, Plot, PlotPoints, Points};
-use serde::{Deserialize, Serialize};
 
 use super::methods::{MAX_DRAWN_POINTS, MethodId, Path, decimate, fixed_path, steps_for};
-use super::problems::Field2;
 use super::style::{self, fmt_num};
 use super::{Param, SlideWidget};
-
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct SpiralSpec {
-    #[serde(default = "default_h")]
-    pub h: f64,
-    #[serde(default = "default_turns")]
-    pub turns: f64,
-    /// Draw the midpoint and RK4 panels beside Euler's.
-    #[serde(default = "yes")]
-    pub compare: bool,
-}
-
-fn default_h() -> f64 {
-    0.1
-}
-fn default_turns() -> f64 {
-    3.0
-}
-fn yes() -> bool {
-    true
-}
+use crate::deck::widgets::{Field2, SpiralSpec};
 
 const H_RANGE: (f64, f64) = (0.005, 1.0);
 const MAX_STEPS: usize = 20_000;

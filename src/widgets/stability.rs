@@ -3,11 +3,10 @@
 //! from its Butcher tableau, so a tableau in the deck gets its true region.
 
 use egui_plot::{Line, Plot, PlotImage, PlotPoint};
-use serde::{Deserialize, Serialize};
 
-use super::methods::MethodId;
 use super::style;
 use super::{Param, SlideWidget};
+use crate::deck::widgets::StabilitySpec;
 use crate::ode::Tableau;
 use crate::ode::stability::cabs;
 
@@ -50,38 +49,6 @@ pub fn stable_h_limit(t: &Tableau, lambda: C, h_max: f64) -> f64 {
         last_ok = h;
     }
     h_max
-}
-
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct StabilitySpec {
-    #[serde(default = "default_methods")]
-    pub methods: Vec<MethodId>,
-    /// Further methods, e.g. written out in the deck: `(name: "Ralston", a: [...], b: [...], c: [...])`.
-    #[serde(default)]
-    pub tableaux: Vec<Tableau>,
-    /// Tableau files (RON, as `lectern solve` reads them), relative to the deck's folder,
-    /// e.g. `["tableaux/rk4-typo.ron"]`.
-    #[serde(default)]
-    pub files: Vec<String>,
-    /// Visible window (re_min, re_max, im_min, im_max).
-    #[serde(default = "default_view")]
-    pub view: (f64, f64, f64, f64),
-    /// Show z = hλ for this λ (e.g. the oscillator's ±i) as a marker moving with h.
-    #[serde(default)]
-    pub lambda: Option<(f64, f64)>,
-    #[serde(default = "default_h")]
-    pub h: f64,
-}
-
-fn default_methods() -> Vec<MethodId> {
-    vec![MethodId::Euler, MethodId::Midpoint, MethodId::Rk4]
-}
-fn default_view() -> (f64, f64, f64, f64) {
-    (-3.5, 1.5, -3.0, 3.0)
-}
-fn default_h() -> f64 {
-    1.0
 }
 
 /// Colours of deck tableaux, in order; the notes' RK4 typo always gets its own
@@ -371,6 +338,8 @@ impl SlideWidget for Stability {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::deck::widgets::stability::default_view;
+    use crate::widgets::MethodId;
 
     #[test]
     fn known_stability_limits() {

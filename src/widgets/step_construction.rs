@@ -3,42 +3,11 @@
 //! combination. `[` and `]` step backwards and forwards through the construction.
 
 use egui_plot::{Arrows, Line, Plot, PlotPoints, Points, Text};
-use serde::{Deserialize, Serialize};
 
 use super::methods::{MethodId, fixed_path};
-use super::problems::Field1;
 use super::style::{self, fmt_num};
 use super::{Param, SlideWidget};
-
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct StepSpec {
-    #[serde(default = "default_field")]
-    pub field: Field1,
-    #[serde(default = "default_start")]
-    pub start: (f64, f64),
-    #[serde(default = "default_h")]
-    pub h: f64,
-    /// Euler, Midpoint or Rk4.
-    #[serde(default = "default_method")]
-    pub method: MethodId,
-    /// How far the construction is shown: 0 = just the start, `stages(method)` = complete.
-    #[serde(default)]
-    pub stage: usize,
-}
-
-fn default_field() -> Field1 {
-    Field1::Forced
-}
-fn default_start() -> (f64, f64) {
-    (0.0, 1.5)
-}
-fn default_h() -> f64 {
-    1.5
-}
-fn default_method() -> MethodId {
-    MethodId::Rk4
-}
+use crate::deck::widgets::{Field1, StepSpec};
 
 /// Number of reveal stages of a construction.
 pub fn stages(m: MethodId) -> usize {

@@ -2,19 +2,10 @@
 //! is drawn in Euler's colour, 2 in midpoint's and 4 in RK4's: the order a method matches.
 
 use egui_plot::{Line, Plot, Points};
-use serde::{Deserialize, Serialize};
 
 use super::style;
 use super::{Param, SlideWidget};
-
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub enum TaylorFn {
-    Sin,
-    Cos,
-    Exp,
-    /// ln(1 + x), radius of convergence 1.
-    Log1p,
-}
+use crate::deck::widgets::{TaylorFn, TaylorSpec};
 
 impl TaylorFn {
     pub fn eval(self, x: f64) -> f64 {
@@ -66,32 +57,6 @@ pub fn truncation(f: TaylorFn, a: f64, n: usize, x: f64) -> f64 {
         sum += f.derivative(k, a) * term;
     }
     sum
-}
-
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct TaylorSpec {
-    #[serde(default = "default_fn")]
-    pub function: TaylorFn,
-    /// Expansion point.
-    #[serde(default)]
-    pub a: f64,
-    /// Highest order drawn (all orders 1..=order are shown).
-    #[serde(default = "default_order")]
-    pub order: usize,
-    /// Visible t range.
-    #[serde(default = "default_range")]
-    pub range: (f64, f64),
-}
-
-fn default_fn() -> TaylorFn {
-    TaylorFn::Sin
-}
-fn default_order() -> usize {
-    4
-}
-fn default_range() -> (f64, f64) {
-    (-4.0, 4.0)
 }
 
 pub fn order_color(n: usize) -> egui::Color32 {

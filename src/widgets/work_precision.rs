@@ -8,13 +8,12 @@ use std::sync::mpsc::{Receiver, channel};
 use std::time::Instant;
 
 use egui_plot::{Line, Points};
-use serde::{Deserialize, Serialize};
 
 use super::convergence::log_axes_plot;
 use super::methods::{MethodId, steps_for};
-use super::problems::Field2;
 use super::style::{self, fmt_num};
 use super::{Param, SlideWidget};
+use crate::deck::widgets::{Field2, WorkPrecisionSpec};
 use std::sync::OnceLock;
 
 use crate::ode::study::max_error;
@@ -33,29 +32,6 @@ pub fn dopri5_fixed() -> &'static Tableau {
         t.name = "RK5 (Dormand–Prince)".into();
         t
     })
-}
-
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct WorkPrecisionSpec {
-    /// Integration interval length (the problem is the circle, exact solution known).
-    #[serde(default = "default_t_end")]
-    pub t_end: f64,
-    /// Steps sizes: h = h_max / 2^k, k = 0..levels.
-    #[serde(default = "default_levels")]
-    pub levels: usize,
-    #[serde(default = "yes")]
-    pub rk5: bool,
-}
-
-fn default_t_end() -> f64 {
-    10.0
-}
-fn default_levels() -> usize {
-    10
-}
-fn yes() -> bool {
-    true
 }
 
 /// One run: f-evaluations, seconds, global error.

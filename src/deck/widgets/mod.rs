@@ -1,0 +1,68 @@
+//! The widget specs: what a deck file says about each live widget (and, while presenting, the
+//! widget's live, tweakable values). Pure data with serde, no egui: `crate::widgets` draws them.
+
+use serde::{Deserialize, Serialize};
+
+pub mod convergence;
+pub mod methods;
+pub mod neptune;
+pub mod problems;
+pub mod rigid_body;
+pub mod slope_field;
+pub mod spiral;
+pub mod stability;
+pub mod step_construction;
+pub mod taylor;
+pub mod work_precision;
+
+pub use convergence::ConvergenceSpec;
+pub use methods::MethodId;
+pub use neptune::{NeptuneProblem, NeptuneSpec};
+pub use problems::{Field1, Field2};
+pub use rigid_body::RigidBodySpec;
+pub use slope_field::{FieldKind, SlopeFieldSpec};
+pub use spiral::SpiralSpec;
+pub use stability::StabilitySpec;
+pub use step_construction::StepSpec;
+pub use taylor::{TaylorFn, TaylorSpec};
+pub use work_precision::WorkPrecisionSpec;
+
+/// Which widget a slide shows, with its parameters from the deck file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum WidgetSpec {
+    /// 1. Slope field of ẋ = f(x, t) or a phase plane, with Euler / midpoint / RK4 / exact paths.
+    SlopeField(SlopeFieldSpec),
+    /// 2. One step of Euler, midpoint and RK4, built up stage by stage.
+    StepConstruction(StepSpec),
+    /// 3. Euler turns the circle x'' = −x into a spiral (the "inaccuracy" picture).
+    Spiral(SpiralSpec),
+    /// 4. "Off to Neptune": y' = λy or the oscillator with h across the stability limit.
+    Neptune(NeptuneSpec),
+    /// 5. Taylor polynomials of order 1, 2, 3, … around a point.
+    Taylor(TaylorSpec),
+    /// 6. Global error vs h on log–log axes with fitted slopes.
+    Convergence(ConvergenceSpec),
+    /// 7. Work–precision: error vs f-evaluations and vs time, computed in the background.
+    WorkPrecision(WorkPrecisionSpec),
+    /// 8. Stability regions |R(z)| ≤ 1 in the complex plane.
+    Stability(StabilitySpec),
+    /// 9. A tumbling box near its intermediate axis (the Dzhanibekov flip).
+    RigidBody(RigidBodySpec),
+}
+
+impl WidgetSpec {
+    /// A short name for lists and snapshot files.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            WidgetSpec::SlopeField(_) => "slope-field",
+            WidgetSpec::StepConstruction(_) => "step-construction",
+            WidgetSpec::Spiral(_) => "spiral",
+            WidgetSpec::Neptune(_) => "neptune",
+            WidgetSpec::Taylor(_) => "taylor",
+            WidgetSpec::Convergence(_) => "convergence",
+            WidgetSpec::WorkPrecision(_) => "work-precision",
+            WidgetSpec::Stability(_) => "stability",
+            WidgetSpec::RigidBody(_) => "rigid-body",
+        }
+    }
+}
