@@ -281,3 +281,36 @@ fn snapshots_of_slides_overview_and_help() {
     h.run_steps(3);
     h.snapshot_options("app-help", &snapshot_options());
 }
+
+#[test]
+fn frame_stats_append_one_line_per_drawn_frame_with_the_mode() {
+    let (dir, path) = fixture();
+    let stats = dir.path().join("frames.csv");
+    let mut app = LecternApp::new(DeckSession::open(&path).unwrap());
+    app.set_frame_stats(&stats).unwrap();
+    let mut h = Harness::builder()
+        .with_size(SIZE)
+        .wgpu()
+        .build_ui_state(|ui, app: &mut LecternApp| app.frame_ui(ui), app);
+    h.run_steps(4);
+    press(&mut h, Key::Tab);
+    assert_eq!(h.state().mode(), Mode::Scene);
+    h.run_steps(3);
+    let text = std::fs::read_to_string(&stats).unwrap();
+    let lines: Vec<(&str, f64)> = text
+        .lines()
+        .map(|l| {
+            let (mode, ms) = l.split_once(',').unwrap();
+            (mode, ms.parse().unwrap())
+        })
+        .collect();
+    // One line per frame drawn, but the first (no interval yet).
+    let frames = h.ctx.cumulative_frame_nr();
+    assert_eq!(lines.len() as u64 + 1, frames, "{text}");
+    assert!(lines.iter().all(|(_, ms)| *ms >= 0.0));
+    let modes: Vec<&str> = lines.iter().map(|(m, _)| *m).collect();
+    let first_scene = modes.iter().position(|m| *m == "scene").unwrap();
+    assert!(modes[..first_scene].iter().all(|m| *m == "slides"));
+    assert!(modes[first_scene..].iter().all(|m| *m == "scene"));
+    assert!(modes.len() - first_scene >= 3, "{modes:?}");
+}

@@ -8,6 +8,7 @@
 use std::path::PathBuf;
 use std::time::Duration;
 
+use super::frame_stats::FrameClock;
 use super::ink::InkState;
 use super::ink_draw::paint_on_slide;
 use super::offscreen::OffscreenRenderer;
@@ -70,6 +71,8 @@ pub struct LecternApp {
     pub(super) placed: bool,
     /// Ink on the slides (`DECK.ink.ron`) and the drawing tools.
     pub(super) ink: InkState,
+    /// Wall time between drawn frames (`--frame-stats`, the scene panel's readout).
+    pub(super) frames: FrameClock,
 }
 
 impl LecternApp {
@@ -97,7 +100,14 @@ impl LecternApp {
             screen_plan: ScreenPlan::Single,
             placed: false,
             ink,
+            frames: FrameClock::default(),
         }
+    }
+
+    /// `--frame-stats FILE`: append `mode,frame_ms` to `path` for every drawn frame.
+    pub fn set_frame_stats(&mut self, path: &std::path::Path) -> std::io::Result<()> {
+        self.frames = FrameClock::with_file(path)?;
+        Ok(())
     }
 
     /// Starts hot reload: the deck's folder is watched and `ctx` repainted on each change.
@@ -152,8 +162,13 @@ impl LecternApp {
 
     /// One whole frame: reload, keys, the slide or scene, overlays.
     pub fn frame_ui(&mut self, ui: &mut egui::Ui) {
-        self.pump_reload();
         let ctx = ui.ctx().clone();
+        self.frames.tick(
+            ctx.cumulative_frame_nr(),
+            self.mode,
+            std::time::Instant::now(),
+        );
+        self.pump_reload();
         self.handle_keys(&ctx);
         self.track_pace(&ctx);
         self.place_audience(&ctx);
@@ -294,7 +309,19 @@ impl LecternApp {
 
 /// The scene's panel for the presenter view (it takes the place of the current slide).
 /// A free function so the presenter view can borrow the scene beside the deck state.
-pub(super) fn scene_panel_ui(scene: &mut Option<Result<SceneView, String>>, ui: &mut egui::Ui) {
+/// `frame_ms` is the app's own wall time between drawn frames (what `--frame-stats` writes):
+/// on a software renderer the GPU work dominates and a CPU-side timer would flatter it.
+pub(super) fn scene_panel_ui(
+    scene: &mut Option<Result<SceneView, String>>,
+    frame_ms: Option<f32>,
+    ui: &mut egui::Ui,
+) {
+    if let Some(ms) = frame_ms {
+        ui.label(format!(
+            "frame {ms:.0} ms ({:.1} fps), wall time between drawn frames",
+            1e3 / ms.max(1e-3)
+        ));
+    }
     match scene {
         Some(Ok(view)) => view.controls_ui(ui),
         Some(Err(e)) => {

@@ -4,6 +4,7 @@
 mod actions;
 mod blocks;
 mod files;
+pub mod frame_stats;
 mod images;
 pub mod ink;
 pub mod ink_draw;

@@ -81,7 +81,8 @@ impl LecternApp {
             drawing,
         };
         // In scene mode the scene's panel replaces the slide and its controls.
-        let mut scene_panel = |ui: &mut egui::Ui| scene_panel_ui(&mut self.scene, ui);
+        let frame_ms = self.frames.mean_ms();
+        let mut scene_panel = |ui: &mut egui::Ui| scene_panel_ui(&mut self.scene, frame_ms, ui);
         let scene: Option<SceneControls> = (self.mode == Mode::Scene).then_some(&mut scene_panel);
         let resp = presenter_ui(ui, deck, index, &mut self.states, &info, scene);
         // Drawing on the presenter's current slide; the audience window, drawn later in this

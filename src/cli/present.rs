@@ -35,6 +35,10 @@ pub struct Args {
     /// Rehearsal: record the actual time per slide in DECK.timings.ron beside the deck.
     #[arg(long)]
     pub rehearse: bool,
+    /// Append `mode,frame_ms` to FILE for every drawn frame (`slides` or `scene`; wall
+    /// milliseconds since the previous drawn frame), to measure the live app.
+    #[arg(long, value_name = "FILE")]
+    pub frame_stats: Option<PathBuf>,
 }
 
 /// The bundled lecture: `slides/lecture.ron` under the current folder, else in the source tree
@@ -58,6 +62,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     let title = format!("lectern — {}", session.deck().title);
     let rehearsal = args.rehearse.then(|| path.with_extension("timings.ron"));
+    let frame_stats = args.frame_stats;
     let choice = if args.single_screen {
         ScreenChoice::Single
     } else if args.presenter {
@@ -97,6 +102,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             app.watch(&cc.egui_ctx);
             app.set_screens(monitors, plan);
             app.rehearsal_file = rehearsal;
+            if let Some(file) = &frame_stats {
+                app.set_frame_stats(file)
+                    .map_err(|e| format!("cannot write {}: {e}", file.display()))?;
+            }
             Ok(Box::new(app))
         }),
         &event_loop,
