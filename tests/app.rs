@@ -314,3 +314,71 @@ fn frame_stats_append_one_line_per_drawn_frame_with_the_mode() {
     assert!(modes[first_scene..].iter().all(|m| *m == "scene"));
     assert!(modes.len() - first_scene >= 3, "{modes:?}");
 }
+
+/// The window clears to the slide's background (or the letterbox colour, or black) and then
+/// does not paint those window-sized rectangles again: a frame must look the same as one that
+/// paints them. Rendered headless as the window renders: cleared to the app's clear colour.
+#[test]
+fn window_clear_colour_shows_the_same_pixels_as_painting_the_background() {
+    use std::cell::Cell;
+    let (_dir, path) = fixture();
+    let mut r = lectern::app::OffscreenRenderer::software_first().unwrap();
+    // 16:9 (no letterbox) and 4:3 (bars above and below).
+    for size in [[960, 540], [800, 600]] {
+        for keys in [
+            &[][..],
+            &[Key::ArrowRight],
+            &[Key::ArrowRight, Key::ArrowRight],
+            &[Key::O],
+            &[Key::B],
+            &[Key::P],
+        ] {
+            let mut render = |window_clear: bool| {
+                let mut app = LecternApp::new(DeckSession::open(&path).unwrap());
+                app.set_window_clear(window_clear);
+                let events: Vec<Event> = keys
+                    .iter()
+                    .map(|k| lectern::app::keys::press(*k, Modifiers::NONE))
+                    .collect();
+                let mut sent = false;
+                let clear = Cell::new(egui::Color32::from_rgb(255, 0, 255));
+                let img = r
+                    .render_cleared(
+                        size,
+                        1.0,
+                        |ui| {
+                            // The keys once, in the first pass; the slide settles in the others.
+                            if !sent {
+                                ui.ctx()
+                                    .input_mut(|i| i.events.extend(events.iter().cloned()));
+                                sent = true;
+                            }
+                            app.frame_ui(ui);
+                            if window_clear {
+                                clear.set(app.clear_color32());
+                            }
+                        },
+                        &clear,
+                    )
+                    .unwrap();
+                (img, app.nav().index())
+            };
+            let (painted, at) = render(false);
+            let (cleared, at_too) = render(true);
+            assert_eq!(at, at_too);
+            let mut differ = 0;
+            let mut worst = 0;
+            for (p, q) in painted.pixels().zip(cleared.pixels()) {
+                for i in 0..3 {
+                    let d = p.0[i].abs_diff(q.0[i]);
+                    worst = worst.max(d);
+                    differ += usize::from(d > 2);
+                }
+            }
+            assert!(
+                differ <= 20,
+                "{size:?} after {keys:?}: {differ} channel values differ, worst by {worst}"
+            );
+        }
+    }
+}

@@ -81,14 +81,11 @@ pub const HELP: &[(&str, &str)] = &[
     ("Ctrl+1…9 1…9", "store / recall a tweak bookmark"),
     ("Ctrl+S", "write tweaks back into the deck file"),
     ("E", "export this slide as PNG"),
-    ("D H L", "pen / highlighter / laser pointer on or off"),
+    ("D H L", "pen / highlighter / laser pointer"),
     ("1…5 (drawing)", "ink colour"),
-    (
-        "Ctrl+Z Shift+D",
-        "undo the last stroke / clear this slide's ink",
-    ),
+    ("Ctrl+Z Shift+D", "undo a stroke / clear the slide's ink"),
     ("?", "this list"),
-    ("Esc", "close overlays, stop drawing, leave fullscreen"),
+    ("Esc", "close overlays, stop drawing, fullscreen"),
 ];
 
 /// The actions in `events`, read in `mode`.

@@ -73,6 +73,13 @@ pub struct LecternApp {
     pub(super) ink: InkState,
     /// Wall time between drawn frames (`--frame-stats`, the scene panel's readout).
     pub(super) frames: FrameClock,
+    /// What the window is cleared to before the frame is painted ([`Self::clear_color32`]).
+    pub(super) clear: egui::Color32,
+    /// Drawing into a window cleared to [`Self::clear_color32`]: what that colour already
+    /// covers (the slide's background, the letterbox around the overview and the presenter
+    /// view, the black screen) is not painted again. On a software rasteriser each
+    /// window-sized rectangle costs tens of milliseconds of CPU per frame.
+    pub(super) window_clear: bool,
 }
 
 impl LecternApp {
@@ -101,7 +108,21 @@ impl LecternApp {
             placed: false,
             ink,
             frames: FrameClock::default(),
+            clear: egui::Color32::BLACK,
+            window_clear: false,
         }
+    }
+
+    /// See [`Self::clear_color32`]: on in the window (eframe clears it to that colour), off
+    /// where nothing clears the target (egui_kittest clears to transparent).
+    pub fn set_window_clear(&mut self, on: bool) {
+        self.window_clear = on;
+    }
+
+    /// The colour under everything the last frame painted: the slide's background, the
+    /// letterbox colour, or black.
+    pub fn clear_color32(&self) -> egui::Color32 {
+        self.clear
     }
 
     /// `--frame-stats FILE`: append `mode,frame_ms` to `path` for every drawn frame.
@@ -176,6 +197,7 @@ impl LecternApp {
             self.show_presenter_window(&ctx);
         }
         if self.presenter_overlay {
+            self.clear = Palette::of(crate::deck::Theme::Dark).letterbox;
             self.presenter_ui(ui);
             return;
         }
@@ -183,10 +205,20 @@ impl LecternApp {
         let deck = self.session.deck();
         let palette = Palette::of(deck.theme);
         let index = self.session.nav().index();
+        let fill = !self.window_clear;
+        self.clear = match (self.mode, &self.overlay) {
+            _ if self.black => egui::Color32::BLACK,
+            (Mode::Slides, Overlay::Overview) | (Mode::Scene, _) => palette.letterbox,
+            (Mode::Slides, _) => palette.background,
+        };
         match (self.mode, &self.overlay) {
-            (_, _) if self.black => black_ui(ui),
+            (_, _) if self.black => {
+                if fill {
+                    black_ui(ui);
+                }
+            }
             (Mode::Slides, Overlay::Overview) => {
-                let picked = overlays::overview_ui(ui, deck, index, &mut self.states);
+                let picked = overlays::overview_ui(ui, deck, index, &mut self.states, fill);
                 if let Some(i) = picked {
                     self.session.navigate(|nav, deck| nav.go(deck, i));
                     self.overlay = Overlay::None;
@@ -198,6 +230,7 @@ impl LecternApp {
                 let drawing = self.ink.is_drawing() && self.overlay == Overlay::None;
                 let options = SlideOptions {
                     drawing,
+                    background: fill,
                     ..SlideOptions::default()
                 };
                 let resp = slide_ui_with(ui, deck, index, self.states.slide(slide), options);
@@ -348,6 +381,13 @@ impl eframe::App for LecternApp {
         if self.render_state.is_none() {
             self.render_state = frame.wgpu_render_state().cloned();
         }
+        self.window_clear = true;
         self.frame_ui(ui);
+    }
+
+    /// The root window is cleared to what lies under the frame (see [`Self::clear_color32`]).
+    /// (eframe clears the presenter's window, an immediate viewport, to black.)
+    fn clear_color(&self, _visuals: &egui::Visuals) -> [f32; 4] {
+        self.clear.to_normalized_gamma_f32()
     }
 }

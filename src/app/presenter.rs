@@ -21,6 +21,23 @@ pub struct PresenterInfo<'a> {
     pub ink_next: InkView<'a>,
     /// A drawing tool is on: the current slide takes the pointer for ink.
     pub drawing: bool,
+    /// Paint the window's background. A window that is cleared to (nearly) that colour anyway
+    /// skips it: on a software rasteriser a window-sized rectangle costs tens of ms of CPU.
+    pub fill_window: bool,
+}
+
+impl<'a> PresenterInfo<'a> {
+    /// The timer, problems and bookmarks; no ink, not drawing, the window's background painted.
+    pub fn new(pace: PaceReport, problems: &'a [String], bookmarks: &'a [(u8, String)]) -> Self {
+        Self {
+            pace,
+            problems,
+            bookmarks,
+            ink_next: InkView::default(),
+            drawing: false,
+            fill_window: true,
+        }
+    }
 }
 
 /// In scene mode: the scene's control panel, which takes the place of the current slide.
@@ -38,7 +55,9 @@ pub fn presenter_ui(
     theme::install_fonts(ui.ctx());
     let palette = Palette::of(Theme::Dark);
     let full = ui.available_rect_before_wrap();
-    ui.painter().rect_filled(full, 0.0, palette.letterbox);
+    if info.fill_window {
+        ui.painter().rect_filled(full, 0.0, palette.letterbox);
+    }
     let pad = (full.width() / 80.0).max(8.0);
     let area = full.shrink(pad);
     let left_w = area.width() * 0.62;

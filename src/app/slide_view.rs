@@ -240,6 +240,10 @@ pub struct SlideOptions<'a> {
     pub footer: bool,
     /// Fill the space around the canvas (when the shapes differ) with the letterbox colour.
     pub letterbox: bool,
+    /// Paint the canvas's background colour. The window leaves it to the render pass's clear
+    /// colour instead ([`crate::app::LecternApp`]'s `clear_color`): on a software rasteriser
+    /// every window-sized rectangle costs tens of milliseconds of CPU.
+    pub background: bool,
     /// Ink painted over the slide. (The live windows paint theirs after taking this frame's
     /// pointer input instead, with [`paint_on_slide`], so a stroke shows the frame it is drawn.)
     pub ink: InkView<'a>,
@@ -253,6 +257,7 @@ impl Default for SlideOptions<'_> {
         Self {
             footer: true,
             letterbox: true,
+            background: true,
             ink: InkView::default(),
             drawing: false,
         }
@@ -301,9 +306,14 @@ pub fn slide_ui_with(
     let (canvas, scale) = fit_canvas(avail, deck.aspect.ratio());
     let look = Look { palette, scale };
     if options.letterbox {
-        ui.painter().rect_filled(avail, 0.0, palette.letterbox);
+        // Under a painted canvas the bars reach a point into it, so no seam shows at
+        // fractional edges; over the clear colour they stop at its edge.
+        let under = if options.background { 1.0 } else { 0.0 };
+        letterbox_ui(ui, avail, canvas, under, palette.letterbox);
     }
-    ui.painter().rect_filled(canvas, 0.0, palette.background);
+    if options.background {
+        ui.painter().rect_filled(canvas, 0.0, palette.background);
+    }
     // Registered before the content, so any widget drawn on top takes the click instead.
     let background = ui.interact(
         canvas,
@@ -437,6 +447,31 @@ fn footer_ui(ui: &egui::Ui, deck: &Deck, index: usize, canvas: Rect, look: &Look
         font,
         look.palette.dim,
     );
+}
+
+/// Fills `avail` outside `canvas` with `color`: only the bars, never the area the canvas covers
+/// (painting it twice costs a window's worth of pixels on a software rasteriser). Each bar
+/// reaches `under` points into the canvas.
+fn letterbox_ui(ui: &egui::Ui, avail: Rect, canvas: Rect, under: f32, color: Color32) {
+    let bars = [
+        Rect::from_min_max(avail.min, egui::pos2(avail.max.x, canvas.min.y + under)),
+        Rect::from_min_max(egui::pos2(avail.min.x, canvas.max.y - under), avail.max),
+        Rect::from_min_max(
+            egui::pos2(avail.min.x, canvas.min.y),
+            egui::pos2(canvas.min.x + under, canvas.max.y),
+        ),
+        Rect::from_min_max(
+            egui::pos2(canvas.max.x - under, canvas.min.y),
+            egui::pos2(avail.max.x, canvas.max.y),
+        ),
+    ];
+    for bar in bars {
+        // A bar thinner than the overlap is only the overlap: the canvas fills its side.
+        if bar.width() > under + 0.01 && bar.height() > under + 0.01 {
+            // (with `under` = 0: any bar with some area)
+            ui.painter().rect_filled(bar, 0.0, color);
+        }
+    }
 }
 
 /// A slide-sized black rectangle (the `B` key).

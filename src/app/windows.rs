@@ -79,6 +79,7 @@ impl LecternApp {
             bookmarks: &marks,
             ink_next: self.ink.view(key_of(index + 1), now),
             drawing,
+            fill_window: !self.window_clear,
         };
         // In scene mode the scene's panel replaces the slide and its controls.
         let frame_ms = self.frames.mean_ms();
