@@ -38,6 +38,8 @@ pub struct InkState {
     live: Option<Live>,
     /// The laser's recent positions. Never saved.
     laser: Option<Laser>,
+    /// Paint strokes without anti-aliased edges (see [`InkView::plain_edges`]).
+    plain_edges: bool,
 }
 
 /// Where a pointer gesture happens: the slide (by key) and the surface, i.e. which window's
@@ -68,7 +70,14 @@ impl InkState {
             color: 0,
             live: None,
             laser: None,
+            plain_edges: false,
         }
+    }
+
+    /// On a software rasteriser: strokes without anti-aliased edges (see
+    /// [`InkView::plain_edges`]).
+    pub fn set_plain_edges(&mut self, on: bool) {
+        self.plain_edges = on;
     }
 
     pub fn tool(&self) -> Option<InkTool> {
@@ -168,6 +177,7 @@ impl InkState {
                 .filter(|l| l.place.key == key)
                 .map_or(&[], |l| l.trail.as_slice()),
             now,
+            plain_edges: self.plain_edges,
         }
     }
 

@@ -386,6 +386,10 @@ impl eframe::App for LecternApp {
     fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
         if self.render_state.is_none() {
             self.render_state = frame.wgpu_render_state().cloned();
+            let software = self.render_state.as_ref().is_some_and(|rs| {
+                rs.adapter.get_info().device_type == egui_wgpu::wgpu::DeviceType::Cpu
+            });
+            self.ink.set_plain_edges(software);
         }
         self.window_clear = true;
         self.frame_ui(ui);
