@@ -382,3 +382,18 @@ fn window_clear_colour_shows_the_same_pixels_as_painting_the_background() {
         }
     }
 }
+
+/// The window drops the release of slide keys (each event egui sees costs frames): a press
+/// alone must work, twice, and leave no key held in egui's input state.
+#[test]
+fn slide_keys_work_without_their_release_and_are_not_left_held() {
+    let (_dir, path) = fixture();
+    let mut h = harness(&path);
+    h.run_steps(2);
+    for want in [1, 2] {
+        h.key_down(Key::ArrowRight);
+        h.run_steps(2);
+        assert_eq!(index(&h), want);
+        assert!(!h.ctx.input(|i| i.key_down(Key::ArrowRight)));
+    }
+}

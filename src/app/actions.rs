@@ -29,6 +29,8 @@ impl LecternApp {
         ctx.input_mut(|i| {
             let mut flags = handled.into_iter();
             i.events.retain(|_| !flags.next().unwrap_or(false));
+            // The window drops these keys' releases: never leave them held in egui's state.
+            i.keys_down.retain(|k| !keys::release_is_ignored(*k));
         });
     }
 

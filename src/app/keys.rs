@@ -98,6 +98,14 @@ pub fn is_handled(event: &Event, mode: KeyMode) -> bool {
     action(event, mode).is_some() || matches!(event, Event::Key { key, .. } if claimed_key(*key))
 }
 
+/// Keys whose release means nothing to the app or to egui: the window drops their release
+/// events, and [`crate::app::LecternApp`] forgets them as held once pressed. Each input event
+/// costs egui two more frames, and on a software renderer a frame costs tens of ms, so a
+/// clicker's PageDown is three frames instead of up to six.
+pub fn release_is_ignored(key: Key) -> bool {
+    claimed_key(key)
+}
+
 /// Keys we act on when pressed; their release (and repeats) are ours too.
 fn claimed_key(key: Key) -> bool {
     matches!(

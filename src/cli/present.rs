@@ -6,6 +6,7 @@ use std::sync::{Arc, Mutex};
 use anyhow::Context as _;
 
 use crate::app::LecternApp;
+use crate::app::keys;
 use crate::app::screens::{MonitorRect, ScreenChoice, ScreenPlan, plan_screens};
 use crate::deck::DeckSession;
 use winit::application::ApplicationHandler;
@@ -152,7 +153,29 @@ fn describe(monitors: &[MonitorRect], plan: &ScreenPlan) -> String {
     format!("monitors: [{}]; {plan}", list.join(", "))
 }
 
+/// The egui key for the keys whose release the window may drop (the slide keys).
+fn egui_key(key: &winit::keyboard::Key) -> Option<egui::Key> {
+    use winit::keyboard::{Key, NamedKey};
+    let Key::Named(named) = key else {
+        return None;
+    };
+    Some(match named {
+        NamedKey::ArrowLeft => egui::Key::ArrowLeft,
+        NamedKey::ArrowRight => egui::Key::ArrowRight,
+        NamedKey::ArrowUp => egui::Key::ArrowUp,
+        NamedKey::ArrowDown => egui::Key::ArrowDown,
+        NamedKey::PageUp => egui::Key::PageUp,
+        NamedKey::PageDown => egui::Key::PageDown,
+        NamedKey::Home => egui::Key::Home,
+        NamedKey::End => egui::Key::End,
+        NamedKey::Space => egui::Key::Space,
+        NamedKey::Tab => egui::Key::Tab,
+        _ => return None,
+    })
+}
+
 /// Forwards everything to eframe; on the first `resumed` it first records the monitors.
+/// Releases of the slide keys are dropped on the way (see [`egui_key`]).
 struct MonitorProbe<'a> {
     inner: eframe::EframeWinitApplication<'a>,
     monitors: Arc<Mutex<Vec<MonitorRect>>>,
@@ -186,6 +209,14 @@ impl ApplicationHandler<eframe::UserEvent> for MonitorProbe<'_> {
     }
 
     fn window_event(&mut self, el: &ActiveEventLoop, id: WindowId, event: WindowEvent) {
+        if let WindowEvent::KeyboardInput { event: key, .. } = &event
+            && key.state == winit::event::ElementState::Released
+            && egui_key(&key.logical_key).is_some_and(keys::release_is_ignored)
+        {
+            // Each event egui sees costs two more frames; a slide key's release changes
+            // nothing (see `keys::release_is_ignored`).
+            return;
+        }
         self.inner.window_event(el, id, event);
     }
 
