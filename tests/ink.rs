@@ -91,6 +91,20 @@ fn drag(h: &mut Harness<'static, LecternApp>, path: &[Pos2]) {
     h.run_steps(2);
 }
 
+/// A click (press and release in one frame) at `pos`.
+fn click(h: &mut Harness<'static, LecternApp>, pos: Pos2) {
+    h.event(Event::PointerMoved(pos));
+    for pressed in [true, false] {
+        h.event(Event::PointerButton {
+            pos,
+            button: PointerButton::Primary,
+            pressed,
+            modifiers: Modifiers::NONE,
+        });
+    }
+    h.run_steps(2);
+}
+
 /// A circle of radius `r` points around `c`, as a drag path.
 fn circle(c: Pos2, r: f32) -> Vec<Pos2> {
     (0..=40)
@@ -207,16 +221,7 @@ fn d_and_a_drag_draw_a_stroke_the_plot_never_sees_and_ctrl_z_removes_it() {
 
     // A click while drawing is a dot, not "next slide".
     let dot = pos2(100.0, 480.0);
-    h.event(Event::PointerMoved(dot));
-    for pressed in [true, false] {
-        h.event(Event::PointerButton {
-            pos: dot,
-            button: PointerButton::Primary,
-            pressed,
-            modifiers: Modifiers::NONE,
-        });
-    }
-    h.run_steps(2);
+    click(&mut h, dot);
     assert_eq!(h.state().nav().index(), 1, "a click while drawing stays");
     assert_eq!(h.state().ink().file().ink().strokes("field").len(), 2);
 
@@ -237,16 +242,7 @@ fn d_and_a_drag_draw_a_stroke_the_plot_never_sees_and_ctrl_z_removes_it() {
     // D again leaves drawing: a click on the background advances again.
     press(&mut h, Key::D);
     assert_eq!(h.state().ink().tool(), None);
-    h.event(Event::PointerMoved(pos2(20.0, 20.0)));
-    for pressed in [true, false] {
-        h.event(Event::PointerButton {
-            pos: pos2(20.0, 20.0),
-            button: PointerButton::Primary,
-            pressed,
-            modifiers: Modifiers::NONE,
-        });
-    }
-    h.run_steps(2);
+    click(&mut h, pos2(20.0, 20.0));
     assert_eq!(h.state().nav().index(), 2);
 }
 
@@ -296,19 +292,7 @@ fn laser_shows_a_dot_and_saves_nothing() {
     let [x0, _, x1, _] = bx.unwrap();
     assert!(x0 >= 400 && x1 <= 440, "trail gone, dot left: {bx:?}");
     // Nothing drawn, nothing saved; a click with the laser stays on the slide.
-    h.event(Event::PointerButton {
-        pos: pos2(420.0, 200.0),
-        button: PointerButton::Primary,
-        pressed: true,
-        modifiers: Modifiers::NONE,
-    });
-    h.event(Event::PointerButton {
-        pos: pos2(420.0, 200.0),
-        button: PointerButton::Primary,
-        pressed: false,
-        modifiers: Modifiers::NONE,
-    });
-    h.run_steps(2);
+    click(&mut h, pos2(420.0, 200.0));
     assert_eq!(h.state().nav().index(), 0);
     assert!(h.state().ink().file().ink().is_empty());
     assert!(!ink_file_path(&path).exists(), "the laser writes no file");
