@@ -185,7 +185,7 @@ fn click_on_the_slide_goes_forward_but_not_on_a_widget() {
     let n = with_widget + 1;
     for key in [Key::G]
         .into_iter()
-        .chain(n.to_string().chars().map(|c| digit_key(c)))
+        .chain(n.to_string().chars().map(digit_key))
         .chain([Key::Enter])
     {
         press(&mut h, key);

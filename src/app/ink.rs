@@ -231,9 +231,7 @@ impl InkState {
                 return failed;
             }
         }
-        let Some(live) = self.live.as_mut().filter(|l| l.place == here) else {
-            return None;
-        };
+        let live = self.live.as_mut().filter(|l| l.place == here)?;
         // Every position the pointer passed this frame, not just the last: a slow frame must
         // not turn a circle into a polygon.
         ctx.input(|i| {
