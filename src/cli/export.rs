@@ -83,6 +83,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             ..SlideOptions::default()
         };
         let image = renderer.render_slide_with(&deck, index, &mut state, args.size, options)?;
+        // e.g. a formula stopped at its time budget: the slide shows its source instead
+        for problem in state.problems() {
+            eprintln!("lectern: warning: {problem}");
+        }
         let file = args.out.join(format!("slide-{:0digits$}.png", index + 1));
         image
             .save(&file)
