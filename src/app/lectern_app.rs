@@ -120,7 +120,7 @@ impl LecternApp {
     }
 
     /// See [`Self::clear_color32`]: on in the window (eframe clears it to that colour), off
-    /// where nothing clears the target (egui_kittest clears to transparent).
+    /// for headless renders and egui_kittest, whose targets are not cleared to it.
     pub fn set_window_clear(&mut self, on: bool) {
         self.window_clear = on;
     }
