@@ -4,7 +4,10 @@
 mod actions;
 mod blocks;
 mod files;
+pub mod frame_stats;
 mod images;
+pub mod ink;
+pub mod ink_draw;
 pub mod keys;
 mod lectern_app;
 mod ode_editor;
