@@ -40,7 +40,9 @@ const DECK: &str = r#"(
     slides: [
         (id: "t", title: "Drawing on slides", layout: Title, body: [Text("Pen, highlighter, laser")]),
         (id: "field", title: "A plot that takes drags", body: [
-            Widget(SlopeField((field: OneD(Forced), start: (0.0, 1.5), h: 0.5, t_end: 8.0,
+            Widget(SlopeField((ode: Inline((vars: ["x"], rhs: ["cos(t) - x"], initial: [1.5],
+                exact: Some(["(cos(t) + sin(t))/2 + (x - (cos(t0) + sin(t0))/2)*exp(-(t - t0))"]))),
+                start: (0.0, 1.5), h: 0.5, t_end: 8.0,
                 view: (0.0, 8.0, -1.5, 2.0), exact: true))),
         ]),
         (id: "plain", title: "Plain", body: [Text("Nothing to drag here.")]),
