@@ -137,7 +137,7 @@ fn a_broken_shader_copy_reports_its_file_and_line() {
     let line = std::fs::read_to_string(&common)
         .unwrap()
         .lines()
-        .position(|l| l.contains("let d = w.dir_k_amp.xy;"))
+        .position(|l| l.contains("let d = w.direction;"))
         .unwrap()
         + 1;
     break_line(&common, line);
@@ -186,18 +186,20 @@ fn hot_reload_keeps_the_old_pipeline_on_error_and_swaps_in_the_fix() {
         "the old water pipeline must stay in use"
     );
 
-    // 2. valid WGSL that fails at pipeline creation (entry point renamed): caught by the
-    //    error scope, not by a panic
+    // 2. valid WGSL that does not fit the renderer (entry point renamed): reported at the
+    //    renamed function, not by a panic
     let tonemap = dir.path().join("tonemap.wgsl");
     let tm = std::fs::read_to_string(&tonemap).unwrap();
     std::fs::write(&tonemap, tm.replace("fn fs_main(", "fn fs_renamed(")).unwrap();
     h.renderer.reload_shaders(std::slice::from_ref(&tonemap));
     assert_eq!(h.renderer.shader_errors().len(), 2);
+    let renamed_line = tm.lines().position(|l| l.contains("fn fs_main(")).unwrap() + 1;
     assert!(
-        h.renderer
-            .shader_errors()
-            .iter()
-            .any(|d| d.file == tonemap && d.message.contains("pipeline creation failed"))
+        h.renderer.shader_errors().iter().any(|d| d.file == tonemap
+            && d.line == renamed_line
+            && d.message.contains("entry point named `fs_main`")),
+        "{:?}",
+        h.renderer.shader_errors()
     );
     let still = h.render(SIZE).unwrap();
     assert!(within_tolerance(&before, &still));

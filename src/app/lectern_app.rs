@@ -11,13 +11,13 @@ use std::time::Duration;
 use super::offscreen::OffscreenRenderer;
 use super::overlays;
 use super::pacing::Pacing;
+use super::scene_mode::SceneMode;
 use super::screens::{MonitorRect, ScreenPlan};
 use super::slide_view::{DeckState, SlideState, black_ui, slide_ui};
 use super::theme::Palette;
 use super::tweaks::Bookmarks;
 use crate::deck::{DeckSession, Nav};
 use crate::reload::Reloaded;
-use crate::render::SceneView;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Mode {
@@ -47,7 +47,7 @@ pub struct LecternApp {
     /// The water scene file scene mode shows.
     pub scene_path: PathBuf,
     /// Created on the first `Tab` (it needs the GPU); an error is shown in its place.
-    pub(super) scene: Option<Result<SceneView, String>>,
+    pub(super) scene: Option<Result<SceneMode, String>>,
     /// `C`: the live controls (scene panel) on the audience screen.
     pub(super) show_controls: bool,
     pub(super) pacing: Pacing,
@@ -238,9 +238,10 @@ impl LecternApp {
             return;
         };
         let path = self.scene_path.clone();
-        let scene = self
-            .scene
-            .get_or_insert_with(|| SceneView::new(&rs, &path).map_err(|e| format!("{e:#}")));
+        let ctx = ui.ctx().clone();
+        let scene = self.scene.get_or_insert_with(|| {
+            SceneMode::new(&rs, &path, move || ctx.request_repaint()).map_err(|e| format!("{e:#}"))
+        });
         match scene {
             Ok(view) => {
                 // The panel belongs to the presenter window, or to `C`: no button for the audience.
@@ -264,7 +265,7 @@ impl LecternApp {
 
 /// The scene's panel for the presenter view (it takes the place of the current slide).
 /// A free function so the presenter view can borrow the scene beside the deck state.
-pub(super) fn scene_panel_ui(scene: &mut Option<Result<SceneView, String>>, ui: &mut egui::Ui) {
+pub(super) fn scene_panel_ui(scene: &mut Option<Result<SceneMode, String>>, ui: &mut egui::Ui) {
     match scene {
         Some(Ok(view)) => view.controls_ui(ui),
         Some(Err(e)) => {

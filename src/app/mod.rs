@@ -11,6 +11,8 @@ pub mod offscreen;
 pub mod overlays;
 pub mod pacing;
 pub mod presenter;
+pub mod scene_mode;
+mod scene_panel;
 pub mod screens;
 pub mod slide_view;
 pub mod theme;
@@ -20,6 +22,7 @@ mod windows;
 
 pub use lectern_app::{LecternApp, Mode, Overlay};
 pub use offscreen::{OffscreenError, OffscreenRenderer, render_slide_png};
+pub use scene_mode::SceneMode;
 pub use slide_view::{
     DeckState, SlideOptions, SlideResponse, SlideState, TweakSnapshot, slide_ui, slide_ui_with,
 };

@@ -148,7 +148,7 @@ fn check_file(file: &Path, report: &mut Report) {
             Err(d) => Err(vec![d]),
         },
         Kind::Scene => as_result(crate::scene::check_file(file)),
-        Kind::Shader => as_result(crate::render::shaders::check_file(file)),
+        Kind::Shader => as_result(crate::render::check_shader_file(file)),
         Kind::Problem => crate::ode::problem::Problem::load(file)
             .map(|_| ())
             .map_err(|d| vec![d]),
@@ -185,6 +185,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     for d in &report.problems {
         println!("{d}");
+    }
+    if let Some(note) = crate::render::pipeline_check_skipped() {
+        println!("{note}");
     }
     println!("{}", report.summary());
     if report.problems.is_empty() {
