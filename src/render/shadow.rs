@@ -103,7 +103,9 @@ pub fn light_clip_from_world(scene: &Scene) -> Mat4 {
     let centre = 0.5 * (lo + hi);
     let radius = 0.5 * (hi - lo).length();
     let eye = centre + sun * (radius + 1.0);
-    let up = if sun.y.abs() > 0.99 { Vec3::Z } else { Vec3::Y };
+    // the map's "up" along a horizontal edge of the box, so the box's square top lies along
+    // the map's axes rather than as a diamond that leaves its corners unused
+    let up = if sun.z.abs() > 0.99 { Vec3::X } else { Vec3::Z };
     let view = glam::camera::rh::view::look_at_mat4(eye, centre, up);
     let mut min = Vec3::splat(f32::MAX);
     let mut max = Vec3::splat(f32::MIN);
