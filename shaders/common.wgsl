@@ -75,11 +75,13 @@ fn gerstner(xz: vec2f, t: f32) -> Surface {
     // GPU Gems eq. 12 drops, as src/waves.rs does)
     var tg = vec3f(1.0, 0.0, 0.0);
     var bt = vec3f(0.0, 0.0, 1.0);
-    let count = min(g.wave_count, MAX_WAVES);
-    for (var i = 0u; i < count; i++) {
+    // all MAX_WAVES slots (unused ones are zero and add nothing), not `g.wave_count`: a loop
+    // bound read from a uniform makes lavapipe (Mesa 22.3) compile and keep a new shader variant
+    // every frame (+0.25 MB per frame; see pbr.wgsl and docs/benchmarks/scene.md)
+    for (var i = 0u; i < MAX_WAVES; i++) {
         let w = g.waves[i];
         let d = w.direction;
-        let k = w.wavenumber_per_m;
+        let k = max(w.wavenumber_per_m, 1e-6); // an unused slot: k = 0
         let a = w.amplitude_m;
         let qka = w.steepness_qka;
         let phase = k * dot(d, xz) - w.angular_freq_per_sec * t;
