@@ -30,6 +30,16 @@ enum Command {
     Inertia(cli::inertia::Args),
     /// Render the water scene to PNG frames, headless.
     RenderScene(cli::render_scene::Args),
+    /// (internal) Measure typesetting off the UI thread on a deck (docs/benchmarks/typeset.md).
+    #[command(name = "typeset-bench", hide = true)]
+    TypesetBench(cli::typeset_bench::Args),
+    /// (internal) Typeset formulas sent over stdin, for the bounded worker pool.
+    #[command(name = "typeset-worker", hide = true)]
+    TypesetWorker {
+        /// Memory a formula may use beyond the worker's own, in MiB.
+        #[arg(long, default_value_t = 512)]
+        memory_mb: u64,
+    },
 }
 
 fn main() -> std::process::ExitCode {
@@ -50,6 +60,10 @@ fn main() -> std::process::ExitCode {
         Some(Command::Bench(a)) => cli::bench::run(a),
         Some(Command::Inertia(a)) => cli::inertia::run(a),
         Some(Command::RenderScene(a)) => cli::render_scene::run(a),
+        Some(Command::TypesetBench(a)) => cli::typeset_bench::run(a),
+        Some(Command::TypesetWorker { memory_mb }) => {
+            return std::process::ExitCode::from(lectern::math::worker::serve(memory_mb) as u8);
+        }
     };
     match result {
         Ok(()) => std::process::ExitCode::SUCCESS,

@@ -78,6 +78,12 @@ pub fn resolve_for(naming_file: &Path, written: &str) -> Result<PathBuf, PathErr
     resolve(base, &project_root(naming_file), written)
 }
 
+/// Like [`resolve_for`], for a file named from inside the folder `naming_dir` (a widget knows
+/// its deck's folder, not the deck file).
+pub fn resolve_in(naming_dir: &Path, written: &str) -> Result<PathBuf, PathError> {
+    resolve_for(&naming_dir.join("_"), written)
+}
+
 /// Resolves `written` against `base_dir`, refusing anything that is not inside `root`.
 pub fn resolve(base_dir: &Path, root: &Path, written: &str) -> Result<PathBuf, PathError> {
     if written.trim().is_empty() {
@@ -92,7 +98,7 @@ pub fn resolve(base_dir: &Path, root: &Path, written: &str) -> Result<PathBuf, P
     }
     let escapes = || PathError::Escapes {
         written: written.to_string(),
-        root: root.to_path_buf(),
+        root: lexical(root),
     };
     // Lexically: where is `base_dir/written` relative to `root`? `base_dir` must be in `root`.
     let base_in_root = lexical(base_dir)

@@ -387,3 +387,123 @@ fn frame_cost_while_dragging_h() {
         );
     }
 }
+
+#[test]
+fn parallel_transport_states() {
+    let mut r = SnapshotResults::new();
+    check(
+        &mut r,
+        "widget-parallel-transport-s-curve",
+        "ParallelTransport((path: StraightThenS, step: 14))",
+    );
+    check(
+        &mut r,
+        "widget-parallel-transport-loop",
+        "ParallelTransport((path: Loop, fish: 30, yaw_deg: -60.0, pitch_deg: 15.0))",
+    );
+    r.unwrap();
+}
+
+/// The exercise slide's point, from the widget's own data: on the S-curve the Frenet fish's up
+/// flips (once per inflection) and the transported fish's never does; on the straight part the
+/// Frenet frame is undefined.
+#[test]
+fn parallel_transport_widget_data_flips_only_for_frenet() {
+    use lectern::deck::widgets::ParallelTransportSpec;
+    use lectern::widgets::parallel_transport::ParallelTransport;
+    let mut w = ParallelTransport::new(ParallelTransportSpec::default());
+    assert_eq!(w.frenet_flips().len(), 2, "{:?}", w.frenet_flips());
+    let frames = w.frames().to_vec();
+    assert!(frames[1].frenet.is_none(), "straight: N undefined");
+    for pair in frames.windows(2) {
+        let (a, b) = (pair[0].transported_up(), pair[1].transported_up());
+        assert!(a.dot(b) > 0.9, "transported up turned: {a} -> {b}");
+    }
+    // the spelled-out step is the one the fish took
+    w.spec.step = 10;
+    let s = w.shown_step();
+    assert!(s.q_new.dot(w.frames()[11].transported).abs() > 1.0 - 1e-6);
+    assert!(
+        s.angle_rad > 0.05,
+        "a visible turn at step 10: {}",
+        s.angle_rad
+    );
+}
+
+fn simulation_loop() -> lectern::widgets::simulation_loop::SimulationLoop {
+    let spec: WidgetSpec =
+        ron::from_str("SimulationLoop((scene: \"../scenes/water.ron\", body: 0, playing: false))")
+            .unwrap();
+    let WidgetSpec::SimulationLoop(spec) = spec else {
+        unreachable!()
+    };
+    let slides = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("slides");
+    lectern::widgets::simulation_loop::SimulationLoop::new_in(spec, Some(&slides))
+}
+
+#[test]
+fn simulation_loop_numbers_are_the_bodys_derivative() {
+    let mut w = simulation_loop();
+    let n = w
+        .advance(3.0)
+        .expect("the bundled scene has a floating body");
+    // 3 s at h = 1/60 s (an f32 in the scene file)
+    assert!((n.time_secs - 3.0).abs() < 1e-6, "{}", n.time_secs);
+    assert!(
+        (n.q.length() - 1.0).abs() < 1e-9,
+        "q is renormalised each step"
+    );
+    // ω = I⁻¹(t) L, and I⁻¹(t) is symmetric positive definite like I_body⁻¹
+    assert!((n.inv_inertia_world * n.l - n.omega).length() < 1e-12);
+    let i = n.inv_inertia_world;
+    assert!((i - i.transpose()).abs_diff_eq(glam::DMat3::ZERO, 1e-12));
+    assert!(i.determinant() > 0.0 && i.x_axis.x > 0.0);
+    // a box of density 500 in water floats: it stays near the surface, with buoyancy
+    // roughly carrying its weight after it has settled
+    let after = w.advance(20.0).unwrap();
+    assert!(
+        after.x.y.abs() < 1.0,
+        "floating near the surface: {}",
+        after.x
+    );
+    assert!(after.wrench.force.is_finite());
+    // the drift one unnormalised Euler step of q would add is second order in h|ω|
+    let h_omega = after.h_secs * after.omega.length();
+    assert!(
+        after.q_drift <= 0.5 * h_omega * h_omega + 1e-12,
+        "{} vs {}",
+        after.q_drift,
+        h_omega
+    );
+}
+
+#[test]
+fn simulation_loop_reports_a_missing_scene_or_body() {
+    let slides = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("slides");
+    let mut spec = lectern::deck::widgets::SimulationLoopSpec {
+        body: 7,
+        ..Default::default()
+    };
+    let mut w =
+        lectern::widgets::simulation_loop::SimulationLoop::new_in(spec.clone(), Some(&slides));
+    assert!(w.advance(0.1).is_none());
+    assert!(w.error().unwrap().contains("no floating body number 7"));
+    spec.body = 0;
+    spec.scene = "../../../etc/passwd".into();
+    let mut w = lectern::widgets::simulation_loop::SimulationLoop::new_in(spec, Some(&slides));
+    assert!(
+        w.error().unwrap().contains("outside the project"),
+        "{:?}",
+        w.error()
+    );
+}
+
+#[test]
+fn simulation_loop_snapshot() {
+    let mut r = SnapshotResults::new();
+    let mut w = simulation_loop();
+    w.advance(2.0).unwrap();
+    let mut h = harness(Box::new(w));
+    r.add(h.try_snapshot_options("widget-simulation-loop", &options()));
+    r.unwrap();
+}

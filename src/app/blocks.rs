@@ -18,6 +18,9 @@ pub(crate) struct BlockCtx<'a> {
     pub slide_key: &'a str,
     /// The deck's folder; image paths are relative to it.
     pub base_dir: Option<&'a Path>,
+    /// The deck's file and the slide's index in it, to place a formula's error at its line.
+    pub deck_file: Option<&'a Path>,
+    pub slide_index: usize,
 }
 
 /// The style widgets see inside a slide: egui's dark or light visuals recoloured to the
@@ -110,7 +113,8 @@ pub(crate) fn blocks_ui(
     // Widgets (and columns holding them) share the height the other blocks leave.
     let fixed: f32 = blocks
         .iter()
-        .filter_map(|b| measure(ui, b, width, bctx))
+        .enumerate()
+        .filter_map(|(i, b)| measure(ui, b, &[path, &[i]].concat(), width, bctx))
         .sum();
     let flexible = blocks.iter().filter(|b| is_flexible(b)).count();
     let gaps = gap * blocks.len().saturating_sub(1) as f32;
@@ -137,8 +141,15 @@ fn is_flexible(block: &Block) -> bool {
     }
 }
 
-/// The height a non-flexible block will take at `width`, in points; `None` for flexible ones.
-fn measure(ui: &egui::Ui, block: &Block, width: f32, bctx: &BlockCtx) -> Option<f32> {
+/// The height a non-flexible block at `path` will take at `width`, in points; `None` for
+/// flexible ones.
+fn measure(
+    ui: &egui::Ui,
+    block: &Block,
+    path: &[usize],
+    width: f32,
+    bctx: &BlockCtx,
+) -> Option<f32> {
     let look = &bctx.look;
     match block {
         Block::Text(t) => Some(paragraph_galley(ui, t, width, look, Align::Min).size().y),
@@ -154,10 +165,14 @@ fn measure(ui: &egui::Ui, block: &Block, width: f32, bctx: &BlockCtx) -> Option<
                 .sum();
             Some(h + look.scaled(size::BULLET_GAP) * items.len().saturating_sub(1) as f32)
         }
-        Block::Math { src, latex } => Some(
-            formula(ui, bctx, &[], src, *latex)
-                .map_or_else(|| math_source_height(src, look), |f| f.size(ui, width).y),
-        ),
+        Block::Math { src, latex } => {
+            let view = formula(ui, bctx, path, src, *latex);
+            Some(match view.typeset {
+                Some(f) => f.size(ui, width).y,
+                None if view.pending => placeholder_height(src, look),
+                None => math_source_height(src, look),
+            })
+        }
         Block::Image { path, width: w } => {
             let (_, h) = images::image_size(ui.ctx(), bctx.base_dir, path, w, width, look);
             Some(h)
@@ -170,11 +185,15 @@ fn measure(ui: &egui::Ui, block: &Block, width: f32, bctx: &BlockCtx) -> Option<
             let n = cols.len().max(1) as f32;
             let gap = look.scaled(size::BLOCK_GAP * 1.5);
             let cw = (width - gap * (n - 1.0)) / n;
-            let col_h = |col: &Vec<Block>| -> f32 {
-                let inner: f32 = col.iter().filter_map(|b| measure(ui, b, cw, bctx)).sum();
+            let col_h = |(c, col): (usize, &Vec<Block>)| -> f32 {
+                let inner: f32 = col
+                    .iter()
+                    .enumerate()
+                    .filter_map(|(i, b)| measure(ui, b, &[path, &[c, i]].concat(), cw, bctx))
+                    .sum();
                 inner + look.scaled(size::BLOCK_GAP) * col.len().saturating_sub(1) as f32
             };
-            Some(cols.iter().map(col_h).fold(0.0, f32::max))
+            Some(cols.iter().enumerate().map(col_h).fold(0.0, f32::max))
         }
     }
 }
@@ -204,7 +223,12 @@ fn block_ui(
         }
         Block::Bullets(items) => bullets_ui(ui, items, look),
         Block::Math { src, latex } => math_ui(ui, bctx, path, src, *latex, state),
-        Block::Image { path: p, width: w } => images::image_ui(ui, bctx.base_dir, p, w, look),
+        Block::Image { path: p, width: w } => {
+            if let Some(e) = images::image_ui(ui, bctx.base_dir, p, w, look) {
+                let at = format!("{}.path", block_ron_path(bctx.slide_index, path));
+                state.note_problem(located_problem(ui.ctx(), bctx, &at, p, None, e));
+            }
+        }
         Block::Widget(spec) => {
             let (rect, _) = ui.allocate_exact_size(vec2(width, flex_h), Sense::hover());
             let mut child = ui.new_child(
@@ -223,7 +247,7 @@ fn block_ui(
             let h = if is_flexible(block) {
                 flex_h
             } else {
-                measure(ui, block, width, bctx).unwrap_or(0.0)
+                measure(ui, block, path, width, bctx).unwrap_or(0.0)
             };
             let top_left = ui.cursor().min;
             let mut used = 0.0f32;
@@ -355,8 +379,8 @@ pub(crate) fn inline_spans(text: &str) -> Vec<(&str, Inline)> {
 /// A typeset formula, as laid out on the slide.
 struct Typeset {
     texture: egui::TextureId,
+    /// Its size in physical pixels at the slide's current em (a stale picture is scaled).
     size_px: egui::Vec2,
-    error: Option<String>,
 }
 
 impl Typeset {
@@ -371,35 +395,78 @@ impl Typeset {
     }
 }
 
-/// The formula for `src` from the shared cache (typeset on first use), or its last good
-/// rendering if the current source is broken; `None` if it never rendered.
-fn formula(
-    ui: &egui::Ui,
-    bctx: &BlockCtx,
-    path: &[usize],
-    src: &str,
-    latex: bool,
-) -> Option<Typeset> {
-    use crate::math::{MathCache, MathSyntax};
-    let ctx = ui.ctx();
-    let syntax = if latex {
-        MathSyntax::Latex
+/// What a Math block shows this frame.
+struct FormulaView {
+    /// The current formula, or the last good one of this slot (broken or pending edit).
+    typeset: Option<Typeset>,
+    /// The current source is still being typeset (live window only).
+    pending: bool,
+    error: Option<crate::math::MathError>,
+}
+
+fn syntax_of(latex: bool) -> crate::math::MathSyntax {
+    if latex {
+        crate::math::MathSyntax::Latex
     } else {
-        MathSyntax::Typst
-    };
-    let em_px = bctx.look.scaled(size::MATH) * ctx.pixels_per_point();
+        crate::math::MathSyntax::Typst
+    }
+}
+
+/// Formulas are typeset at this many physical pixels per em.
+fn em_px(ctx: &egui::Context, look: &Look) -> f32 {
+    look.scaled(size::MATH) * ctx.pixels_per_point()
+}
+
+/// The formula for `src` from the shared cache. In the live window this never waits: a formula
+/// still being typeset shows the slot's last good picture, or nothing yet (`pending`).
+fn formula(ui: &egui::Ui, bctx: &BlockCtx, path: &[usize], src: &str, latex: bool) -> FormulaView {
+    use crate::math::MathCache;
+    let ctx = ui.ctx();
+    let em = em_px(ctx, &bctx.look);
     let slot = format!("{}/{path:?}", bctx.slide_key);
     let cache = MathCache::shared(ctx);
-    let view = cache
-        .lock()
-        .ok()?
-        .get_slot(ctx, &slot, src, syntax, em_px, bctx.look.palette.title);
-    let error = view.error.map(|e| e.to_string());
-    view.formula.map(|f| Typeset {
-        texture: f.texture.id(),
-        size_px: f.size_px,
-        error,
-    })
+    let Ok(mut cache) = cache.lock() else {
+        return FormulaView {
+            typeset: None,
+            pending: true,
+            error: None,
+        };
+    };
+    let view = cache.get_slot(
+        ctx,
+        &slot,
+        src,
+        syntax_of(latex),
+        em,
+        bctx.look.palette.title,
+    );
+    FormulaView {
+        typeset: view.formula.map(|f| Typeset {
+            texture: f.texture.id(),
+            size_px: f.size_at(em),
+        }),
+        pending: view.pending,
+        error: view.error,
+    }
+}
+
+/// Asks for the formulas of `slides` at the size `look` draws them, so that paging there
+/// finds them typeset. Only in the live window: headless paths wait for what they draw.
+pub(crate) fn prefetch_formulas(
+    ctx: &egui::Context,
+    deck: &crate::deck::Deck,
+    slides: std::ops::Range<usize>,
+    look: &Look,
+) {
+    let cache = crate::math::MathCache::shared(ctx);
+    let Ok(mut cache) = cache.lock() else { return };
+    if cache.waits() {
+        return;
+    }
+    let em = em_px(ctx, look);
+    for f in crate::math::deck::formulas(deck, Some(slides)) {
+        cache.prefetch(ctx, f.src, f.syntax, em, look.palette.title);
+    }
 }
 
 fn math_source_height(src: &str, look: &Look) -> f32 {
@@ -407,9 +474,75 @@ fn math_source_height(src: &str, look: &Look) -> f32 {
     look.scaled(size::MATH * 1.3 * lines + 48.0)
 }
 
-/// Display maths, typeset by Typst (`crate::math`) and centred. A formula that never rendered
-/// shows its source in a quiet monospace frame; a broken edit keeps the last good picture. Either
-/// way the error goes to the slide's problems, for the presenter's screen.
+/// The height a formula is likely to take before it is typeset (so the blocks below it move
+/// little when it arrives).
+fn placeholder_height(src: &str, look: &Look) -> f32 {
+    look.scaled(size::MATH * crate::math::typeset::estimated_height_em(src))
+}
+
+/// `slides[3].body[1][0]`: the [`crate::ron_tree`] path of the block at `path` on a slide.
+fn block_ron_path(slide: usize, path: &[usize]) -> String {
+    let mut p = format!("slides[{slide}].body");
+    for i in path {
+        p.push_str(&format!("[{i}]"));
+    }
+    p
+}
+
+/// A problem with the string `written` at `ron_path` in the deck (its character `col`, 1-based,
+/// if given) as `file:line:col: message` when the deck came from a file that still has that
+/// string there, else the message alone. Cached per problem (it reads the deck file).
+fn located_problem(
+    ctx: &egui::Context,
+    bctx: &BlockCtx,
+    ron_path: &str,
+    written: &str,
+    col: Option<usize>,
+    message: String,
+) -> String {
+    let Some(file) = bctx.deck_file else {
+        return message;
+    };
+    let id =
+        egui::Id::unique(("lectern-located-problem", file, ron_path, written, col)).with(&message);
+    if let Some(line) = ctx.data(|d| d.get_temp::<String>(id)) {
+        return line;
+    }
+    let diag = std::fs::read_to_string(file)
+        .ok()
+        .and_then(|text| crate::math::deck::position(&text, ron_path, written, col))
+        .map_or_else(
+            || crate::diag::Diagnostic::whole_file(file, &message),
+            |(line, col)| crate::diag::Diagnostic::new(file, line, col, &message),
+        );
+    let line = diag.to_string();
+    ctx.data_mut(|d| d.insert_temp(id, line.clone()));
+    line
+}
+
+/// The problem line for a formula's error, at the formula's character in the deck file.
+fn formula_problem(
+    ctx: &egui::Context,
+    bctx: &BlockCtx,
+    path: &[usize],
+    src: &str,
+    latex: bool,
+    err: &crate::math::MathError,
+) -> String {
+    let at = format!("{}.src", block_ron_path(bctx.slide_index, path));
+    // Columns only make sense against what the lecturer typed, i.e. for Typst input.
+    let col = if latex { None } else { err.col };
+    let message = match (bctx.deck_file, col) {
+        (Some(_), _) | (None, None) => crate::math::deck::message(err),
+        (None, Some(c)) => format!("formula {path:?}, column {c}: {}", err.message),
+    };
+    located_problem(ctx, bctx, &at, src, col, message)
+}
+
+/// Display maths, typeset by Typst (`crate::math`) and centred. A formula still being typeset
+/// (live window) keeps its last good picture, or a quiet placeholder of about its height; one
+/// that never rendered shows its source in a quiet monospace frame; a broken edit keeps the last
+/// good picture. Errors go to the slide's problems, for the presenter's screen.
 fn math_ui(
     ui: &mut egui::Ui,
     bctx: &BlockCtx,
@@ -420,7 +553,11 @@ fn math_ui(
 ) {
     let look = &bctx.look;
     let width = ui.available_width();
-    if let Some(f) = formula(ui, bctx, path, src, latex) {
+    let view = formula(ui, bctx, path, src, latex);
+    if let Some(e) = &view.error {
+        state.note_problem(formula_problem(ui.ctx(), bctx, path, src, latex, e));
+    }
+    if let Some(f) = &view.typeset {
         let size = f.size(ui, width);
         let (row, _) = ui.allocate_exact_size(vec2(width, size.y), Sense::hover());
         let rect = Rect::from_center_size(row.center(), size);
@@ -430,9 +567,17 @@ fn math_ui(
             Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0)),
             egui::Color32::WHITE,
         );
-        if let Some(e) = f.error {
-            state.note_problem(format!("formula {path:?}: {e}"));
-        }
+        return;
+    }
+    if view.pending {
+        let h = placeholder_height(src, look);
+        let (row, _) = ui.allocate_exact_size(vec2(width, h), Sense::hover());
+        let quiet = Rect::from_center_size(row.center(), vec2(width * 0.4, h * 0.6));
+        ui.painter().rect_filled(
+            quiet,
+            look.scaled(10.0),
+            look.palette.panel.gamma_multiply(0.5),
+        );
         return;
     }
     let h = math_source_height(src, look);
@@ -461,7 +606,6 @@ fn math_ui(
         galley,
         look.palette.title,
     );
-    state.note_problem(format!("formula {path:?} did not typeset: {src}"));
 }
 
 #[cfg(test)]

@@ -1,7 +1,9 @@
 //! Image blocks: PNGs from the deck's folder, decoded once and kept as egui textures; a changed
-//! file (new modification time) is decoded again, so images hot-reload like the deck.
+//! file (new modification time) is decoded again, so images hot-reload like the deck. Paths go
+//! through [`crate::paths`] (nothing outside the project is shown) and decoding through
+//! [`crate::image_file`] (a header claiming huge dimensions is refused before allocating).
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::time::SystemTime;
 
 use egui::{Rect, Sense, Stroke, vec2};
@@ -14,19 +16,13 @@ struct Cached {
     result: Result<egui::TextureHandle, String>,
 }
 
-fn resolve(base_dir: Option<&Path>, path: &str) -> PathBuf {
-    match base_dir {
-        Some(dir) => dir.join(path),
-        None => PathBuf::from(path),
-    }
-}
-
 fn texture(
     ctx: &egui::Context,
     base_dir: Option<&Path>,
     path: &str,
 ) -> Result<egui::TextureHandle, String> {
-    let full = resolve(base_dir, path);
+    let full = crate::paths::resolve_in(base_dir.unwrap_or(Path::new(".")), path)
+        .map_err(|e| format!("image not shown: {e}"))?;
     let modified = std::fs::metadata(&full).and_then(|m| m.modified()).ok();
     let id = egui::Id::unique(("lectern-image", &full));
     if let Some(c) = ctx.data(|d| d.get_temp::<Cached>(id))
@@ -34,14 +30,11 @@ fn texture(
     {
         return c.result;
     }
-    let result = image::open(&full)
-        .map_err(|e| format!("cannot load image {}: {e}", full.display()))
-        .map(|img| {
-            let rgba = img.to_rgba8();
-            let size = [rgba.width() as usize, rgba.height() as usize];
-            let color = egui::ColorImage::from_rgba_unmultiplied(size, rgba.as_raw());
-            ctx.load_texture(full.display().to_string(), color, Default::default())
-        });
+    let result = crate::image_file::decode(&full).map(|rgba| {
+        let size = [rgba.width() as usize, rgba.height() as usize];
+        let color = egui::ColorImage::from_rgba_unmultiplied(size, rgba.as_raw());
+        ctx.load_texture(full.display().to_string(), color, Default::default())
+    });
     ctx.data_mut(|d| {
         d.insert_temp(
             id,
@@ -73,13 +66,15 @@ pub(crate) fn image_size(
     }
 }
 
+/// Draws the picture, or in its place the reason it cannot be shown (returned too, for the
+/// presenter's list of problems).
 pub(crate) fn image_ui(
     ui: &mut egui::Ui,
     base_dir: Option<&Path>,
     path: &str,
     width: &Option<f32>,
     look: &Look,
-) {
+) -> Option<String> {
     let avail_w = ui.available_width();
     let (w, h) = image_size(ui.ctx(), base_dir, path, width, avail_w, look);
     let (row, _) = ui.allocate_exact_size(vec2(avail_w, h), Sense::hover());
@@ -92,6 +87,7 @@ pub(crate) fn image_ui(
                 Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0)),
                 egui::Color32::WHITE,
             );
+            None
         }
         Err(msg) => {
             // A missing picture must not stop the talk: say which file, in the slide's place.
@@ -101,13 +97,18 @@ pub(crate) fn image_ui(
                 Stroke::new(look.scaled(2.0), look.palette.dim),
                 egui::StrokeKind::Inside,
             );
-            ui.painter().text(
-                rect.center(),
-                egui::Align2::CENTER_CENTER,
-                msg,
+            let galley = ui.painter().layout(
+                msg.clone(),
                 look.font(theme::SERIF, size::FOOTER, ui.ctx()),
                 look.palette.dim,
+                rect.width() - look.scaled(24.0),
             );
+            ui.painter().galley(
+                rect.center() - galley.size() * 0.5,
+                galley,
+                look.palette.dim,
+            );
+            Some(msg)
         }
     }
 }

@@ -183,6 +183,15 @@ impl LecternApp {
             && !self.presenter_window
         {
             overlays::error_notice_ui(ui, err, &palette);
+        } else if !self.presenter_window
+            && self.mode == Mode::Slides
+            && !self.black
+            && self.overlay != Overlay::Overview
+            && let Some(slide) = self.session.deck().slides.get(index)
+            && let Some(problem) = self.states.slide(slide).problems().first()
+        {
+            // e.g. a formula over its time budget: alone, the lecturer must see it too
+            overlays::slide_problem_notice_ui(ui, &problem.clone(), &palette);
         }
         let now = ctx.input(|i| i.time);
         if let Some((msg, until)) = &self.toast {

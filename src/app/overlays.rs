@@ -204,6 +204,28 @@ pub fn overview_cells(n: usize, ratio: f32, avail: Rect) -> Vec<Rect> {
 
 /// The reload error: small, bottom left, with file:line:col, until the file is fixed.
 pub fn error_notice_ui(ui: &mut egui::Ui, error: &Diagnostic, palette: &Palette) {
+    notice_ui(
+        ui,
+        "Not reloaded",
+        &error.to_string(),
+        "showing the last good version; fix and save",
+        palette,
+    );
+}
+
+/// A problem of the slide on screen (e.g. a formula stopped at its time budget, at its
+/// file:line:col), in the same place as the reload error, while it lasts.
+pub fn slide_problem_notice_ui(ui: &mut egui::Ui, problem: &str, palette: &Palette) {
+    notice_ui(
+        ui,
+        "Slide problem",
+        problem,
+        "the slide stays on screen; fix and save",
+        palette,
+    );
+}
+
+fn notice_ui(ui: &mut egui::Ui, heading: &str, text: &str, hint: &str, palette: &Palette) {
     let ctx = ui.ctx().clone();
     let screen = ctx.content_rect();
     let s = (text_size(ui) * 0.72).max(12.0);
@@ -220,21 +242,17 @@ pub fn error_notice_ui(ui: &mut egui::Ui, error: &Diagnostic, palette: &Palette)
                 .show(ui, |ui| {
                     ui.set_max_width(screen.width() * 0.6);
                     ui.label(
-                        egui::RichText::new("Not reloaded")
+                        egui::RichText::new(heading)
                             .size(s)
                             .strong()
                             .color(Color32::from_rgb(0xff, 0x9c, 0x8f)),
                     );
                     ui.label(
-                        egui::RichText::new(error.to_string())
+                        egui::RichText::new(text)
                             .font(egui::FontId::monospace(s))
                             .color(Color32::from_rgb(0xff, 0xdc, 0xd6)),
                     );
-                    ui.label(
-                        egui::RichText::new("showing the last good version; fix and save")
-                            .size(s * 0.9)
-                            .color(palette.dim),
-                    );
+                    ui.label(egui::RichText::new(hint).size(s * 0.9).color(palette.dim));
                 });
         });
 }

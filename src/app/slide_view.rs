@@ -330,6 +330,8 @@ pub fn slide_ui_with(
         look,
         slide_key: slide.key(),
         base_dir: deck.base_dir.as_deref(),
+        deck_file: deck.file.as_deref(),
+        slide_index: index,
     };
     match slide.layout {
         Layout::Content => content_slide_ui(&mut content, slide, &bctx, state),
@@ -338,6 +340,8 @@ pub fn slide_ui_with(
     if options.footer && slide.layout == Layout::Content {
         footer_ui(ui, deck, index, canvas, &look);
     }
+    // Typeset the neighbours' formulas in the background, so paging finds them ready.
+    blocks::prefetch_formulas(ui.ctx(), deck, index.saturating_sub(1)..index + 3, &look);
     SlideResponse {
         canvas,
         scale,

@@ -143,7 +143,13 @@ fn check_file(file: &Path, report: &mut Report) {
                     deck.slides.len(),
                     minutes(deck.planned_secs())
                 ));
-                Ok(())
+                // The files it names (confined to the project) and its formulas (typeset
+                // within the same time and memory bounds as in the window).
+                let text = std::fs::read_to_string(file).unwrap_or_default();
+                let mut problems = crate::deck::files::check_deck_files(file, &text, &deck);
+                problems.extend(crate::math::deck::check_formulas(file, &text, &deck));
+                problems.sort_by_key(|d| (d.line, d.col));
+                as_result(problems)
             }
             Err(d) => Err(vec![d]),
         },

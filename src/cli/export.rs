@@ -65,6 +65,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             eprintln!("lectern: warning: {problem}");
         }
         let image = renderer.render_slide(&deck, index, &mut state, args.size)?;
+        // e.g. a formula stopped at its time budget: the slide shows its source instead
+        for problem in state.problems() {
+            eprintln!("lectern: warning: {problem}");
+        }
         let file = args.out.join(format!("slide-{:0digits$}.png", index + 1));
         image
             .save(&file)

@@ -7,3 +7,4 @@ pub mod inertia;
 pub mod present;
 pub mod render_scene;
 pub mod solve;
+pub mod typeset_bench;

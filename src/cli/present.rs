@@ -95,6 +95,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             let mut app = LecternApp::new(session);
             app.render_state = cc.wgpu_render_state.clone();
             app.watch(&cc.egui_ctx);
+            // The live window never waits for a formula (export and tests do).
+            crate::math::never_wait(&cc.egui_ctx);
             app.set_screens(monitors, plan);
             app.rehearsal_file = rehearsal;
             Ok(Box::new(app))

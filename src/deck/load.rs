@@ -28,6 +28,7 @@ pub fn load_deck(path: &Path) -> Result<Deck, Diagnostic> {
 pub fn parse_deck_file(text: &str, path: &Path) -> Result<Deck, Diagnostic> {
     let mut deck = parse_deck(text, path)?;
     deck.base_dir = path.parent().map(Path::to_path_buf);
+    deck.file = Some(path.to_path_buf());
     Ok(deck)
 }
 

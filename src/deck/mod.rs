@@ -1,6 +1,7 @@
 //! Decks: the slide model as written in `slides/*.ron`, loading with file positions, and
 //! navigation state.
 
+pub mod files;
 mod load;
 mod model;
 pub mod nav;

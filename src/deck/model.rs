@@ -23,6 +23,10 @@ pub struct Deck {
     /// The folder the deck was loaded from; image paths are relative to it. Not in the file.
     #[serde(skip)]
     pub base_dir: Option<PathBuf>,
+    /// The file the deck was loaded from (to place errors found while drawing, e.g. a formula
+    /// over its time budget, at their line and column). Not in the file.
+    #[serde(skip)]
+    pub file: Option<PathBuf>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]

@@ -5,7 +5,8 @@
 use glam::{DMat3, DQuat, DVec3, Quat, Vec3};
 
 use crate::rigid::{
-    BuoyancySamples, Integrator, RigidBody, RigidState, TriMesh, WaterForces, mirtich,
+    BodyConstants, BuoyancySamples, Integrator, RigidBody, RigidState, TriMesh, WaterForces,
+    mirtich,
 };
 use crate::waves::WaveSum;
 
@@ -92,6 +93,12 @@ impl FloatingBody {
         })
     }
 
+    /// Gravity, buoyancy against `waves` and drag: the wrench the scene steps this body with
+    /// (the simulation-loop slide shows it too).
+    pub fn water_forces<'a>(&'a self, waves: &'a WaveSum, sim: &Simulation) -> WaterForces<'a> {
+        water_forces(&self.body.constants, &self.samples, waves, sim)
+    }
+
     pub fn advance(
         &mut self,
         until_secs: f64,
@@ -101,19 +108,8 @@ impl FloatingBody {
     ) {
         let h = sim.body_h_secs as f64;
         self.body.integrator = method;
+        let forces = water_forces(&self.body.constants, &self.samples, waves, sim);
         // a half-step tolerance keeps h = dt in lockstep despite rounding
-        let c = self.body.constants;
-        let i = c.inertia_body;
-        let mean_inertia = (i.x_axis.x + i.y_axis.y + i.z_axis.z) / 3.0;
-        let forces = WaterForces {
-            gravity: GRAVITY,
-            water_density: WATER_DENSITY as f64,
-            waves,
-            samples: &self.samples,
-            linear_drag: sim.linear_drag_per_sec as f64 * c.mass,
-            angular_drag: sim.angular_drag_per_sec as f64 * mean_inertia,
-            wave_time_offset: 0.0,
-        };
         while self.body.time + 0.5 * h <= until_secs {
             self.body.step(h, &forces);
             guard(&mut self.body, self.start, &mut self.resets);
@@ -134,6 +130,25 @@ impl FloatingBody {
             self.body.potential_energy(GRAVITY),
             self.body.angular_momentum().length(),
         )
+    }
+}
+
+fn water_forces<'a>(
+    c: &BodyConstants,
+    samples: &'a BuoyancySamples,
+    waves: &'a WaveSum,
+    sim: &Simulation,
+) -> WaterForces<'a> {
+    let i = c.inertia_body;
+    let mean_inertia = (i.x_axis.x + i.y_axis.y + i.z_axis.z) / 3.0;
+    WaterForces {
+        gravity: GRAVITY,
+        water_density: WATER_DENSITY as f64,
+        waves,
+        samples,
+        linear_drag: sim.linear_drag_per_sec as f64 * c.mass,
+        angular_drag: sim.angular_drag_per_sec as f64 * mean_inertia,
+        wave_time_offset: 0.0,
     }
 }
 

@@ -51,7 +51,7 @@ impl PathShape {
                     Vec3::new(x, 0.0, 0.0)
                 } else {
                     let s = (x - 4.0) / 4.0;
-                    Vec3::new(x, 0.0, 1.2 * (1.0 - (PI * s).cos()))
+                    Vec3::new(x, 0.0, 1.8 * (1.0 - (PI * s).cos()))
                 }
             }
             PathShape::Helix => {

@@ -23,9 +23,11 @@ macro_rules! spec_plumbing {
 pub mod convergence;
 pub mod methods;
 pub mod neptune;
+pub mod parallel_transport;
 pub mod params;
 pub mod problems;
 pub mod rigid_body;
+pub mod simulation_loop;
 pub mod slope_field;
 pub mod spiral;
 pub mod stability;
@@ -69,6 +71,12 @@ impl WidgetSpec {
             WidgetSpec::WorkPrecision(s) => Box::new(work_precision::WorkPrecision::new(s.clone())),
             WidgetSpec::Stability(s) => Box::new(stability::Stability::new_in(s.clone(), base_dir)),
             WidgetSpec::RigidBody(s) => Box::new(rigid_body::RigidBodyView::new(s.clone())),
+            WidgetSpec::ParallelTransport(s) => {
+                Box::new(parallel_transport::ParallelTransport::new(s.clone()))
+            }
+            WidgetSpec::SimulationLoop(s) => {
+                Box::new(simulation_loop::SimulationLoop::new_in(s.clone(), base_dir))
+            }
         }
     }
 }

@@ -94,7 +94,9 @@ impl Stability {
             .files
             .iter()
             .map(|f| {
-                let path = base_dir.map_or_else(|| f.into(), |b| b.join(f));
+                // Confined to the project, like every path a deck names (`crate::paths`).
+                let dir = base_dir.unwrap_or(std::path::Path::new("."));
+                let path = crate::paths::resolve_in(dir, f).map_err(|e| e.to_string())?;
                 Tableau::load(&path).map_err(|e| e.to_string())
             })
             .collect();
@@ -374,6 +376,24 @@ mod tests {
         assert!((lim(typo) - lim(&Tableau::rk4())).abs() > 0.05);
         let err = w.loaded[1].as_ref().unwrap_err();
         assert!(err.contains("nope.ron"), "{err}");
+    }
+
+    /// Tableau files are confined to the project like every path a deck names.
+    #[test]
+    fn tableau_files_outside_the_project_are_refused() {
+        let base = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("slides");
+        let spec = StabilitySpec {
+            methods: vec![],
+            tableaux: vec![],
+            files: vec!["../../outside.ron".into(), "/etc/passwd".into()],
+            view: default_view(),
+            lambda: None,
+            h: 1.0,
+        };
+        let w = Stability::new_in(spec, Some(&base));
+        let errs: Vec<_> = w.loaded.iter().map(|r| r.as_ref().unwrap_err()).collect();
+        assert!(errs[0].contains("outside the project"), "{}", errs[0]);
+        assert!(errs[1].contains("absolute"), "{}", errs[1]);
     }
 
     #[test]

@@ -6,8 +6,10 @@ use serde::{Deserialize, Serialize};
 pub mod convergence;
 pub mod methods;
 pub mod neptune;
+pub mod parallel_transport;
 pub mod problems;
 pub mod rigid_body;
+pub mod simulation_loop;
 pub mod slope_field;
 pub mod spiral;
 pub mod stability;
@@ -18,8 +20,10 @@ pub mod work_precision;
 pub use convergence::ConvergenceSpec;
 pub use methods::MethodId;
 pub use neptune::{NeptuneProblem, NeptuneSpec};
+pub use parallel_transport::ParallelTransportSpec;
 pub use problems::{Field1, Field2};
 pub use rigid_body::RigidBodySpec;
+pub use simulation_loop::SimulationLoopSpec;
 pub use slope_field::{FieldKind, SlopeFieldSpec};
 pub use spiral::SpiralSpec;
 pub use stability::StabilitySpec;
@@ -48,6 +52,10 @@ pub enum WidgetSpec {
     Stability(StabilitySpec),
     /// 9. A tumbling box near its intermediate axis (the Dzhanibekov flip).
     RigidBody(RigidBodySpec),
+    /// 10. The exercise: fish along a path, Frenet frame vs parallel transport.
+    ParallelTransport(ParallelTransportSpec),
+    /// 11. The simulation loop of a floating body, drawn as a cycle with live numbers.
+    SimulationLoop(SimulationLoopSpec),
 }
 
 impl WidgetSpec {
@@ -63,6 +71,8 @@ impl WidgetSpec {
             WidgetSpec::WorkPrecision(_) => "work-precision",
             WidgetSpec::Stability(_) => "stability",
             WidgetSpec::RigidBody(_) => "rigid-body",
+            WidgetSpec::ParallelTransport(_) => "parallel-transport",
+            WidgetSpec::SimulationLoop(_) => "simulation-loop",
         }
     }
 }

@@ -1,0 +1,199 @@
+//! The formulas of a deck: where each sits (slide, block path, and the line and column of its
+//! `src` string in the deck file) and `lectern check`'s typesetting of them all, through the
+//! bounded pool, so a formula that computes too much is reported, never waited for.
+
+use std::path::Path;
+
+use super::pool::pool;
+use super::typeset::{MathError, MathSyntax};
+use super::wire::Request;
+use crate::deck::{Block, Deck};
+use crate::diag::Diagnostic;
+
+/// One `Math` block of a deck.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DeckFormula<'a> {
+    pub slide: usize,
+    /// Indices into the slide's body, then into columns (as the slide renderer numbers them).
+    pub path: Vec<usize>,
+    pub src: &'a str,
+    pub syntax: MathSyntax,
+}
+
+impl DeckFormula<'_> {
+    /// `slides[3].body[1][0][2].src`: where the formula's source is in the RON tree.
+    pub fn ron_path(&self) -> String {
+        ron_path(self.slide, &self.path)
+    }
+
+    /// What to ask the pool for, at `size_px` pixels per em in `rgba`.
+    pub fn request(&self, size_px: f32, rgba: [u8; 4]) -> Request {
+        Request {
+            src: self.src.to_owned(),
+            syntax: self.syntax,
+            size_px,
+            rgba,
+        }
+    }
+}
+
+/// The [`ron_tree`] path of the `src` of the Math block at `path` on slide `slide`.
+pub fn ron_path(slide: usize, path: &[usize]) -> String {
+    let mut p = format!("slides[{slide}].body");
+    for i in path {
+        p.push_str(&format!("[{i}]"));
+    }
+    p.push_str(".src");
+    p
+}
+
+/// Every formula of `slides` (all of them when `None`), in reading order.
+pub fn formulas(deck: &Deck, slides: Option<std::ops::Range<usize>>) -> Vec<DeckFormula<'_>> {
+    fn walk<'a>(
+        slide: usize,
+        blocks: &'a [Block],
+        path: &mut Vec<usize>,
+        out: &mut Vec<DeckFormula<'a>>,
+    ) {
+        for (i, b) in blocks.iter().enumerate() {
+            path.push(i);
+            match b {
+                Block::Math { src, latex } => out.push(DeckFormula {
+                    slide,
+                    path: path.clone(),
+                    src,
+                    syntax: if *latex {
+                        MathSyntax::Latex
+                    } else {
+                        MathSyntax::Typst
+                    },
+                }),
+                Block::Columns(cols) => {
+                    for (c, col) in cols.iter().enumerate() {
+                        path.push(c);
+                        walk(slide, col, path, out);
+                        path.pop();
+                    }
+                }
+                _ => {}
+            }
+            path.pop();
+        }
+    }
+    let range = slides.unwrap_or(0..deck.slides.len());
+    let mut out = Vec::new();
+    for (i, slide) in deck.slides.iter().enumerate().skip(range.start) {
+        if i >= range.end {
+            break;
+        }
+        walk(i, &slide.body, &mut Vec::new(), &mut out);
+    }
+    out
+}
+
+/// 1-based line and column in the deck `text` of the formula at `ron_path` (see [`ron_path`]):
+/// of its character `col` (1-based, as [`MathError::col`]) if given, else of the string's
+/// first character; `None` if the text no longer has `src` there.
+pub fn position(
+    text: &str,
+    ron_path: &str,
+    src: &str,
+    col: Option<usize>,
+) -> Option<(usize, usize)> {
+    crate::deck::files::string_position(text, ron_path, src, col)
+}
+
+/// "formula: unknown variable: q", or the bounds' own "formula stopped after 2 s …".
+pub fn message(err: &MathError) -> String {
+    if err.message.starts_with("formula ") {
+        err.message.clone()
+    } else {
+        format!("formula: {}", err.message)
+    }
+}
+
+/// The error of a formula as a diagnostic at its place in `file` (whose text is `text`).
+pub fn diagnostic(file: &Path, text: &str, f: &DeckFormula, err: &MathError) -> Diagnostic {
+    let col = match f.syntax {
+        MathSyntax::Typst => err.col,
+        MathSyntax::Latex => None,
+    };
+    let message = message(err);
+    match position(text, &f.ron_path(), f.src, col) {
+        Some((line, col)) => Diagnostic::new(file, line, col, message),
+        None => Diagnostic::whole_file(file, format!("slide {}, {message}", f.slide + 1)),
+    }
+}
+
+/// Typesets every formula of `deck` (read from `file`, whose text is `text`) through the
+/// pool, within its bounds, and returns a diagnostic per formula that fails.
+pub fn check_formulas(file: &Path, text: &str, deck: &Deck) -> Vec<Diagnostic> {
+    let all = formulas(deck, None);
+    // Queue them all first: both workers stay busy, and one slow formula costs its budget once.
+    let jobs: Vec<_> = all
+        .iter()
+        .map(|f| pool().submit(f.request(40.0, [0, 0, 0, 255]), true, true, None))
+        .collect();
+    all.iter()
+        .zip(jobs)
+        .filter_map(|(f, job)| job.wait().err().map(|e| diagnostic(file, text, f, &e)))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::deck::parse_deck;
+
+    const DECK: &str = r##"(
+    title: "t",
+    slides: [
+        (title: "a", body: [Text("x"), Math(src: "a + b")]),
+        (title: "b", body: [
+            Columns([
+                [Text("left")],
+                [Math(src: "c", latex: true), Math(src: r#"x + undefinedthing(2)"#)],
+            ]),
+        ]),
+    ],
+)"##;
+
+    #[test]
+    fn formulas_are_found_with_their_paths_and_positions() {
+        let deck = parse_deck(DECK, Path::new("d.ron")).unwrap();
+        let fs = formulas(&deck, None);
+        let paths: Vec<_> = fs.iter().map(|f| (f.slide, f.path.clone())).collect();
+        assert_eq!(
+            paths,
+            vec![(0, vec![1]), (1, vec![0, 1, 0]), (1, vec![0, 1, 1])]
+        );
+        assert_eq!(fs[1].syntax, MathSyntax::Latex);
+        assert_eq!(formulas(&deck, Some(1..2)).len(), 2);
+        // the string's first character, and a column inside it (raw string)
+        let line4 = DECK.lines().nth(3).unwrap();
+        let col = line4.find("a + b").unwrap() + 1;
+        assert_eq!(
+            position(DECK, &fs[0].ron_path(), "a + b", None),
+            Some((4, col))
+        );
+        let (line, col) = position(DECK, &fs[2].ron_path(), fs[2].src, Some(5)).unwrap();
+        let line_text = DECK.lines().nth(line - 1).unwrap();
+        assert!(
+            line_text[col - 1..].starts_with("undefinedthing"),
+            "{line_text}"
+        );
+        // a stale text (the formula changed since) gives no position rather than a wrong one
+        assert_eq!(position(DECK, &fs[0].ron_path(), "a + c", None), None);
+    }
+
+    #[test]
+    fn check_places_a_typst_error_at_its_character() {
+        let deck = parse_deck(DECK, Path::new("d.ron")).unwrap();
+        let ds = check_formulas(Path::new("d.ron"), DECK, &deck);
+        assert_eq!(ds.len(), 1, "{ds:?}");
+        let d = &ds[0];
+        let line_text = DECK.lines().nth(d.line - 1).unwrap();
+        assert!(line_text[d.col - 1..].starts_with("undefinedthing"), "{d}");
+        assert!(d.message.contains("unknown"), "{d}");
+    }
+}
