@@ -155,31 +155,31 @@ fn binding_fits(
                 ..
             } = ty
             {
-                let kind_fits = match (class, sample_type) {
-                    (ImageClass::Depth { .. }, wgpu::TextureSampleType::Depth) => true,
-                    (
-                        ImageClass::Sampled {
-                            kind: ScalarKind::Float,
-                            ..
-                        },
-                        wgpu::TextureSampleType::Float { .. },
-                    ) => true,
-                    (
-                        ImageClass::Sampled {
-                            kind: ScalarKind::Sint,
-                            ..
-                        },
-                        wgpu::TextureSampleType::Sint,
-                    ) => true,
-                    (
-                        ImageClass::Sampled {
-                            kind: ScalarKind::Uint,
-                            ..
-                        },
-                        wgpu::TextureSampleType::Uint,
-                    ) => true,
-                    _ => false,
-                };
+                let kind_fits = matches!(
+                    (class, sample_type),
+                    (ImageClass::Depth { .. }, wgpu::TextureSampleType::Depth)
+                        | (
+                            ImageClass::Sampled {
+                                kind: ScalarKind::Float,
+                                ..
+                            },
+                            wgpu::TextureSampleType::Float { .. },
+                        )
+                        | (
+                            ImageClass::Sampled {
+                                kind: ScalarKind::Sint,
+                                ..
+                            },
+                            wgpu::TextureSampleType::Sint,
+                        )
+                        | (
+                            ImageClass::Sampled {
+                                kind: ScalarKind::Uint,
+                                ..
+                            },
+                            wgpu::TextureSampleType::Uint,
+                        )
+                );
                 if kind_fits && *view_dimension == view {
                     return Ok(());
                 }
