@@ -14,13 +14,13 @@ use super::ink_draw::paint_on_slide;
 use super::offscreen::OffscreenRenderer;
 use super::overlays;
 use super::pacing::Pacing;
+use super::scene_mode::SceneMode;
 use super::screens::{MonitorRect, ScreenPlan};
 use super::slide_view::{DeckState, SlideOptions, SlideState, black_ui, slide_ui_with};
 use super::theme::Palette;
 use super::tweaks::Bookmarks;
 use crate::deck::{DeckSession, Nav};
 use crate::reload::Reloaded;
-use crate::render::SceneView;
 
 /// How long the deck's folder must be quiet after a change before it is reloaded. Editors
 /// finish a save (write, rename) within a few milliseconds; 150 ms made a save take ~300 ms to
@@ -56,7 +56,7 @@ pub struct LecternApp {
     /// The water scene file scene mode shows.
     pub scene_path: PathBuf,
     /// Created on the first `Tab` (it needs the GPU); an error is shown in its place.
-    pub(super) scene: Option<Result<SceneView, String>>,
+    pub(super) scene: Option<Result<SceneMode, String>>,
     /// `C`: the live controls (scene panel) on the audience screen.
     pub(super) show_controls: bool,
     pub(super) pacing: Pacing,
@@ -336,9 +336,10 @@ impl LecternApp {
             return;
         };
         let path = self.scene_path.clone();
-        let scene = self
-            .scene
-            .get_or_insert_with(|| SceneView::new(&rs, &path).map_err(|e| format!("{e:#}")));
+        let ctx = ui.ctx().clone();
+        let scene = self.scene.get_or_insert_with(|| {
+            SceneMode::new(&rs, &path, move || ctx.request_repaint()).map_err(|e| format!("{e:#}"))
+        });
         match scene {
             Ok(view) => {
                 // The panel belongs to the presenter window, or to `C`: no button for the audience.
@@ -365,7 +366,7 @@ impl LecternApp {
 /// `frame_ms` is the app's own wall time between drawn frames (what `--frame-stats` writes):
 /// on a software renderer the GPU work dominates and a CPU-side timer would flatter it.
 pub(super) fn scene_panel_ui(
-    scene: &mut Option<Result<SceneView, String>>,
+    scene: &mut Option<Result<SceneMode, String>>,
     frame_ms: Option<f32>,
     ui: &mut egui::Ui,
 ) {

@@ -15,6 +15,8 @@ pub mod offscreen;
 pub mod overlays;
 pub mod pacing;
 pub mod presenter;
+pub mod scene_mode;
+mod scene_panel;
 pub mod screens;
 pub mod slide_view;
 pub mod theme;
@@ -24,6 +26,7 @@ mod windows;
 
 pub use lectern_app::{LecternApp, Mode, Overlay};
 pub use offscreen::{OffscreenError, OffscreenRenderer, render_slide_png};
+pub use scene_mode::SceneMode;
 pub use slide_view::{
     DeckState, SlideOptions, SlideResponse, SlideState, TweakSnapshot, slide_ui, slide_ui_with,
 };

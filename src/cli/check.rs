@@ -153,7 +153,7 @@ pub fn check_file(file: &Path, decks: &mut DeckChecker, report: &mut Report) {
     report.counts[kind as usize] += 1;
     let problems = match kind {
         // a shader is read with its includes
-        Kind::Shader => crate::render::shaders::check_file(file),
+        Kind::Shader => crate::render::check_shader_file(file),
         _ => match std::fs::read_to_string(file) {
             Ok(text) => check_text(kind, &text, file, decks, report),
             Err(e) => vec![Diagnostic::whole_file(file, format!("cannot read: {e}"))],
@@ -187,7 +187,7 @@ pub fn check_text(
             checked.problems
         }
         Kind::Scene => first(crate::scene::parse_scene(text, file).map(|_| ())),
-        Kind::Shader => crate::render::shaders::check_file(file),
+        Kind::Shader => crate::render::check_shader_file(file),
         Kind::Problem => first(crate::ode::problem::Problem::parse(text, file).map(|_| ())),
         Kind::Tableau => first(crate::ode::Tableau::parse(text, file).map(|_| ())),
     }
@@ -209,6 +209,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     for d in &report.problems {
         println!("{d}");
+    }
+    if let Some(note) = crate::render::pipeline_check_skipped() {
+        println!("{note}");
     }
     println!("{}", report.summary());
     if report.problems.is_empty() {
