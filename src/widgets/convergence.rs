@@ -230,13 +230,17 @@ impl SlideWidget for Convergence {
                 let txt = s
                     .map(|s| format!("{name} {s:.2}"))
                     .unwrap_or_else(|| format!("{name} –"));
-                ui.colored_label(*color, egui::RichText::new(txt).strong());
+                ui.colored_label(
+                    style::text_color(ui, *color),
+                    egui::RichText::new(txt).strong(),
+                );
             }
         });
         let h_min = data
             .iter()
             .flat_map(|d| d.3.iter().map(|p| p.0))
             .fold(f64::INFINITY, f64::min);
+        let visuals = ui.visuals().clone();
         let plot = log_axes_plot("convergence", "step h", "global error");
         let plot = if h_min.is_finite() {
             plot.include_x(h_min.log10() - 0.6)
@@ -270,7 +274,7 @@ impl SlideWidget for Convergence {
                             egui::RichText::new(format!("slope {s:.2}  "))
                                 .size(22.0)
                                 .strong()
-                                .color(color),
+                                .color(style::text_color_in(&visuals, color)),
                         )
                         .anchor(egui::Align2::RIGHT_CENTER),
                     );

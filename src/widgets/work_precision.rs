@@ -219,7 +219,9 @@ impl SlideWidget for WorkPrecision {
             self.methods.toggles_ui(ui);
             ui.checkbox(
                 &mut self.spec.rk5,
-                egui::RichText::new("RK5").color(style::DOPRI).strong(),
+                egui::RichText::new("RK5")
+                    .color(style::text_color(ui, style::DOPRI))
+                    .strong(),
             );
             if self.busy() {
                 ui.spinner();
@@ -246,7 +248,7 @@ impl SlideWidget for WorkPrecision {
             for (name, color, s) in &self.results {
                 let best = s.iter().map(|s| s.error).fold(f64::INFINITY, f64::min);
                 ui.colored_label(
-                    *color,
+                    style::text_color(ui, *color),
                     egui::RichText::new(format!("{name} {}", fmt_num(best))).strong(),
                 );
             }
