@@ -9,12 +9,17 @@
 //          Lazarov 2013 / Karis "mobile" approximation.
 // Needs common.wgsl included before it.
 
+// `MaterialGpu` in src/render/pbr.rs
 struct MaterialParams {
     base_color: vec4f,
-    // x metallic, y perceptual roughness, z reflectance, w normal-map strength
-    params: vec4f,
-    // x uv scale (repeats per metre or per unit UV)
-    uv: vec4f,
+    metallic: f32,
+    roughness: f32,             // perceptual; GGX alpha = roughness²
+    reflectance: f32,           // F0 = 0.16 reflectance² for dielectrics (Filament)
+    normal_strength: f32,       // scales the normal map's tangent-plane tilt
+    uv_scale: f32,              // repeats per metre (terrain) or per unit uv
+    _pad0: f32,
+    _pad1: f32,
+    _pad2: f32,
 }
 
 fn D_GGX(n_dot_h: f32, alpha: f32) -> f32 {
@@ -31,7 +36,7 @@ fn V_SmithGGXCorrelated(n_dot_v: f32, n_dot_l: f32, alpha: f32) -> f32 {
 }
 
 fn F_Schlick(f0: vec3f, v_dot_h: f32) -> vec3f {
-    if (!toggle(g.toggles2.x)) {
+    if (!on(g.fresnel_on)) {
         return f0;
     }
     let f = pow(1.0 - v_dot_h, 5.0);
@@ -40,7 +45,7 @@ fn F_Schlick(f0: vec3f, v_dot_h: f32) -> vec3f {
 
 // Karis' analytic approximation of the pre-integrated DFG term (scale, bias) for the split sum.
 fn env_brdf_approx(f0: vec3f, roughness: f32, n_dot_v: f32) -> vec3f {
-    if (!toggle(g.toggles2.x)) {
+    if (!on(g.fresnel_on)) {
         return f0;
     }
     let c0 = vec4f(-1.0, -0.0275, -0.572, 0.022);
@@ -52,7 +57,7 @@ fn env_brdf_approx(f0: vec3f, roughness: f32, n_dot_v: f32) -> vec3f {
 }
 
 fn env_radiance(dir: vec3f, roughness: f32) -> vec3f {
-    let mips = g.water.z;
+    let mips = g.env_mip_count;
     return textureSampleLevel(env_cube, env_sampler, dir, roughness * (mips - 1.0)).rgb;
 }
 
@@ -61,7 +66,7 @@ fn shade(base: vec3f, metallic: f32, roughness_in: f32, reflectance: f32,
          n: vec3f, v: vec3f, world_pos: vec3f, ao: f32) -> vec3f {
     let roughness = clamp(roughness_in, 0.045, 1.0);
     let alpha = roughness * roughness;
-    let l = normalize(g.sun_dir_intensity.xyz);
+    let l = g.sun_dir;
     let h = normalize(v + l);
     let n_dot_v = max(dot(n, v), 1e-4);
     let n_dot_l = clamp(dot(n, l), 0.0, 1.0);
@@ -72,7 +77,7 @@ fn shade(base: vec3f, metallic: f32, roughness_in: f32, reflectance: f32,
     let diffuse_color = base * (1.0 - metallic);
 
     var direct: vec3f;
-    if (toggle(g.toggles.w)) {
+    if (on(g.cook_torrance_on)) {
         let d = D_GGX(n_dot_h, alpha);
         let vis = V_SmithGGXCorrelated(n_dot_v, n_dot_l, alpha);
         let f = F_Schlick(f0, v_dot_h);
@@ -83,15 +88,15 @@ fn shade(base: vec3f, metallic: f32, roughness_in: f32, reflectance: f32,
         // Lambert only: what the lecture's "before" picture looks like
         direct = base / PI * n_dot_l;
     }
-    let sun = g.sun_color.rgb * g.sun_dir_intensity.w;
+    let sun = g.sun_color * g.sun_intensity;
     let lit = direct * sun * sun_visibility(world_pos, n) * sun_transmittance(world_pos);
 
     // ambient: irradiance from the roughest mip, specular from the roughness-matched mip
     var ambient: vec3f;
     let under = sun_transmittance(world_pos);
-    if (toggle(g.toggles.x)) {
+    if (on(g.env_map_on)) {
         let irradiance = env_radiance(n, 1.0);
-        if (toggle(g.toggles.w)) {
+        if (on(g.cook_torrance_on)) {
             let r = reflect(-v, n);
             let spec = env_radiance(r, roughness) * env_brdf_approx(f0, roughness, n_dot_v);
             ambient = diffuse_color * irradiance + spec;

@@ -12,27 +12,43 @@ const DEBUG_SHADOW_MAP: u32 = 1u;
 const DEBUG_NORMALS: u32 = 2u;
 const DEBUG_ENV_CUBE: u32 = 3u;
 
+// One Gerstner wave (`WaveGpu` in src/render/frame.rs).
 struct Wave {
-    // direction (unit, xz), wavenumber k = 2π/L (1/m), amplitude (m)
-    dir_k_amp: vec4f,
-    // angular frequency ω = k·speed (rad/s), Q·k·A = steepness / N (dimensionless)
-    omega_qka: vec4f,
+    direction: vec2f,           // unit, xz
+    wavenumber_per_m: f32,      // k = 2π / wavelength
+    amplitude_m: f32,
+    angular_freq_per_sec: f32,  // ω = k · speed
+    steepness_qka: f32,         // Q k A = steepness / N (dimensionless)
+    _pad: vec2f,
 }
 
+// The per-frame uniforms (`Globals` in src/render/frame.rs; a test compares the layouts).
 struct Globals {
     clip_from_world: mat4x4f,
     world_from_clip: mat4x4f,
     light_clip_from_world: mat4x4f,
-    camera_pos_time: vec4f,     // xyz eye (m), w time (s)
-    sun_dir_intensity: vec4f,   // xyz towards the sun, w irradiance scale
-    sun_color: vec4f,
-    water: vec4f,               // x level (m), y wave count, z env mip count, w exposure
-    absorption: vec4f,          // per metre
-    scatter: vec4f,
-    // toggles, 1.0 = on: x env map, y normal maps, z shadows, w Cook–Torrance (0 = Lambert)
-    toggles: vec4f,
-    // x Fresnel on, y debug view (DEBUG_*), z/w viewport size (px)
-    toggles2: vec4f,
+    eye_m: vec3f,
+    time_secs: f32,
+    sun_dir: vec3f,             // unit, towards the sun
+    sun_intensity: f32,         // irradiance scale
+    sun_color: vec3f,           // linear RGB
+    exposure: f32,
+    absorption_per_m: vec3f,    // Beer–Lambert, per RGB channel
+    far_m: f32,                 // camera far plane
+    scatter_color: vec3f,       // deep-water in-scattering, linear RGB
+    near_m: f32,                // camera near plane
+    water_level_m: f32,
+    wave_count: u32,
+    env_mip_count: f32,
+    debug_view: u32,            // DEBUG_*
+    viewport_size_px: vec2f,    // the HDR target being drawn
+    // technique toggles, 1 = on
+    env_map_on: u32,
+    normal_maps_on: u32,
+    shadows_on: u32,
+    cook_torrance_on: u32,      // 0 = Lambert only
+    fresnel_on: u32,
+    _pad: u32,
     waves: array<Wave, MAX_WAVES>,
 }
 
@@ -42,12 +58,8 @@ struct Globals {
 @group(0) @binding(3) var shadow_map: texture_depth_2d;
 @group(0) @binding(4) var shadow_sampler: sampler_comparison;
 
-fn toggle(v: f32) -> bool {
-    return v > 0.5;
-}
-
-fn debug_view() -> u32 {
-    return u32(g.toggles2.y + 0.5);
+fn on(flag: u32) -> bool {
+    return flag != 0u;
 }
 
 struct Surface {
@@ -58,19 +70,21 @@ struct Surface {
 
 // The Gerstner sum at rest position (x, z): displaced position and analytic frame.
 fn gerstner(xz: vec2f, t: f32) -> Surface {
-    var p = vec3f(xz.x, g.water.x, xz.y);
+    var p = vec3f(xz.x, g.water_level_m, xz.y);
     // tangents ∂P/∂x and ∂P/∂z; the normal is their exact cross product (keeps the cross terms
     // GPU Gems eq. 12 drops, as src/waves.rs does)
     var tg = vec3f(1.0, 0.0, 0.0);
     var bt = vec3f(0.0, 0.0, 1.0);
-    let count = min(u32(g.water.y + 0.5), MAX_WAVES);
-    for (var i = 0u; i < count; i++) {
+    // all MAX_WAVES slots (unused ones are zero and add nothing), not `g.wave_count`: a loop
+    // bound read from a uniform makes lavapipe (Mesa 22.3) compile and keep a new shader variant
+    // every frame (+0.25 MB per frame; see pbr.wgsl and docs/benchmarks/scene.md)
+    for (var i = 0u; i < MAX_WAVES; i++) {
         let w = g.waves[i];
-        let d = w.dir_k_amp.xy;
-        let k = w.dir_k_amp.z;
-        let a = w.dir_k_amp.w;
-        let qka = w.omega_qka.y;
-        let phase = k * dot(d, xz) - w.omega_qka.x * t;
+        let d = w.direction;
+        let k = max(w.wavenumber_per_m, 1e-6); // an unused slot: k = 0
+        let a = w.amplitude_m;
+        let qka = w.steepness_qka;
+        let phase = k * dot(d, xz) - w.angular_freq_per_sec * t;
         let s = sin(phase);
         let c = cos(phase);
         // horizontal: Q·A·D·cos, with Q·A = qka / k
@@ -83,7 +97,7 @@ fn gerstner(xz: vec2f, t: f32) -> Surface {
 
 // Directional shadow: PCF over 3×3 comparison taps (each a bilinear 2×2 in hardware).
 fn sun_visibility(world_pos: vec3f, normal: vec3f) -> f32 {
-    if (!toggle(g.toggles.z)) {
+    if (!on(g.shadows_on)) {
         return 1.0;
     }
     // a small normal offset complements the pipeline's slope-scaled depth bias
@@ -105,7 +119,7 @@ fn sun_visibility(world_pos: vec3f, normal: vec3f) -> f32 {
 
 // Sunlight reaching a point under water is absorbed along its (unrefracted) path: Beer–Lambert.
 fn sun_transmittance(world_pos: vec3f) -> vec3f {
-    let depth = max(g.water.x - world_pos.y, 0.0);
-    let path = depth / max(g.sun_dir_intensity.y, 0.1);
-    return exp(-g.absorption.xyz * path);
+    let depth = max(g.water_level_m - world_pos.y, 0.0);
+    let path = depth / max(g.sun_dir.y, 0.1);
+    return exp(-g.absorption_per_m * path);
 }

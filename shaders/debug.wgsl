@@ -1,31 +1,24 @@
 // debug.wgsl — teaching views: the sun's shadow map as grey levels (near = dark), and the
 // environment cube unfolded as a horizontal cross (+y above, −y below; −x +z +x −z across),
 // each face showing its roughness-blurred mip chain from left (sharp) to right in a strip.
+// Shadow maps: Williams 1978; cube maps: Greene 1986.
+//!include fullscreen.wgsl
+//!include aces.wgsl
 
-struct Params {
-    // x view (1 shadow map, 3 env cube), y env mip count, z/w viewport size
-    v: vec4f,
+// `PostParams` in src/render/tonemap.rs
+struct Post {
+    exposure: f32,
+    debug_view: u32,            // 1 shadow map, 3 env cube
+    env_mip_count: f32,
+    _pad: f32,
+    viewport_size_px: vec2f,    // the display target
+    _pad2: vec2f,
 }
 
-@group(0) @binding(0) var<uniform> params: Params;
+@group(0) @binding(0) var<uniform> post: Post;
 @group(0) @binding(1) var shadow_map: texture_depth_2d;
 @group(0) @binding(2) var env_cube: texture_cube<f32>;
 @group(0) @binding(3) var env_sampler: sampler;
-
-struct FullscreenOut {
-    @builtin(position) clip: vec4f,
-    @location(0) uv: vec2f,
-}
-
-@vertex
-fn vs_fullscreen(@builtin(vertex_index) i: u32) -> FullscreenOut {
-    let uv = vec2f(f32((i << 1u) & 2u), f32(i & 2u));
-    return FullscreenOut(vec4f(uv * 2.0 - 1.0, 0.0, 1.0), vec2f(uv.x, 1.0 - uv.y));
-}
-
-fn aces(x: vec3f) -> vec3f {
-    return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), vec3f(0.0), vec3f(1.0));
-}
 
 fn cross_dir(face: i32, f: vec2f) -> vec3f {
     let u = f.x * 2.0 - 1.0;
@@ -47,11 +40,11 @@ fn cross_dir(face: i32, f: vec2f) -> vec3f {
 
 @fragment
 fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
-    let view = u32(params.v.x + 0.5);
-    if (view == 1u) {
+    let size_px = post.viewport_size_px;
+    if (post.debug_view == 1u) {
         // square, centred
-        let side = min(params.v.z, params.v.w);
-        let p = (in.clip.xy - 0.5 * (params.v.zw - vec2f(side))) / side;
+        let side = min(size_px.x, size_px.y);
+        let p = (in.clip.xy - 0.5 * (size_px - vec2f(side))) / side;
         if (any(p < vec2f(0.0)) || any(p > vec2f(1.0))) {
             return vec4f(0.05, 0.05, 0.05, 1.0);
         }
@@ -61,8 +54,8 @@ fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
         return vec4f(vec3f(grey), 1.0);
     }
     // env cube cross: 4 × 3 cells, top half of the screen; mips in a strip below
-    let cell_px = min(params.v.z / 4.0, params.v.w / 3.6);
-    let origin = vec2f(0.5 * (params.v.z - 4.0 * cell_px), 0.0);
+    let cell_px = min(size_px.x / 4.0, size_px.y / 3.6);
+    let origin = vec2f(0.5 * (size_px.x - 4.0 * cell_px), 0.0);
     let c = (in.clip.xy - origin) / cell_px;
     var face = -1;
     let ci = vec2i(floor(c));
@@ -79,10 +72,10 @@ fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
         return vec4f(aces(textureSampleLevel(env_cube, env_sampler, d, 0.0).rgb), 1.0);
     }
     // the mip strip: the +x…−z equator seen at increasing roughness, one band per mip
-    let mips = params.v.y;
+    let mips = post.env_mip_count;
     let strip_top = 3.0 * cell_px;
     if (in.clip.y > strip_top && ci.x >= 0 && c.x < 4.0) {
-        let t = (in.clip.y - strip_top) / (params.v.w - strip_top);
+        let t = (in.clip.y - strip_top) / (size_px.y - strip_top);
         let mip = floor(t * mips);
         let yaw = c.x / 4.0 * 6.2831853;
         let d = vec3f(cos(yaw), 0.15, sin(yaw));

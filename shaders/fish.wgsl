@@ -67,7 +67,7 @@ fn vs_main(in: VertexIn) -> VertexOut {
     out.world_pos = world;
     out.normal = quat_rotate(in.inst_rotation, bend_dir(in.normal, slope));
     out.tangent = vec4f(quat_rotate(in.inst_rotation, in.tangent.xyz), in.tangent.w);
-    out.uv = in.uv * material.uv.x;
+    out.uv = in.uv * material.uv_scale;
     return out;
 }
 
@@ -79,21 +79,21 @@ fn vs_shadow(in: VertexIn) -> @builtin(position) vec4f {
 @fragment
 fn fs_main(in: VertexOut) -> @location(0) vec4f {
     var n = normalize(in.normal);
-    if (toggle(g.toggles.y)) {
+    if (on(g.normal_maps_on)) {
         let t = normalize(in.tangent.xyz - n * dot(n, in.tangent.xyz));
         let b = cross(n, t) * in.tangent.w;
         var tn = textureSample(normal_map, material_sampler, in.uv).xyz * 2.0 - 1.0;
-        tn = vec3f(tn.xy * material.params.w, tn.z);
+        tn = vec3f(tn.xy * material.normal_strength, tn.z);
         n = normalize(mat3x3f(t, b, n) * tn);
     }
-    if (debug_view() == DEBUG_NORMALS) {
+    if (g.debug_view == DEBUG_NORMALS) {
         return vec4f(n * 0.5 + 0.5, 1.0);
     }
     // countershading: dark back, silver belly (uv.y runs belly 0 → back 1)
     let back = smoothstep(0.45, 0.8, in.uv.y);
     let base = mix(material.base_color.rgb, vec3f(0.08, 0.16, 0.22), back);
-    let v = normalize(g.camera_pos_time.xyz - in.world_pos);
-    let color = shade(base, material.params.x * (1.0 - back), material.params.y,
-                      material.params.z, n, v, in.world_pos, 1.0);
+    let v = normalize(g.eye_m - in.world_pos);
+    let color = shade(base, material.metallic * (1.0 - back), material.roughness,
+                      material.reflectance, n, v, in.world_pos, 1.0);
     return vec4f(color, 1.0);
 }

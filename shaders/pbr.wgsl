@@ -5,10 +5,12 @@
 //!include common.wgsl
 //!include brdf.wgsl
 
+// `ObjectGpu` in src/render/pbr.rs
 struct Object {
     world_from_object: mat4x4f,
-    // x: 1 = use world xz as uv (terrain), y ambient occlusion
-    flags: vec4f,
+    world_uv: f32,              // 1: world xz as texture coordinates (terrain)
+    ambient_occlusion: f32,
+    _pad: vec2f,
 }
 
 @group(1) @binding(0) var<uniform> material: MaterialParams;
@@ -41,18 +43,17 @@ fn vs_main(in: VertexIn) -> VertexOut {
     out.world_pos = world.xyz;
     out.normal = normalize(m * in.normal);
     out.tangent = vec4f(normalize(m * in.tangent.xyz), in.tangent.w);
-    if (object.flags.x > 0.5) {
-        out.uv = world.xz * material.uv.x;
-    } else {
-        out.uv = in.uv * material.uv.x;
-    }
+    // a select, not an `if`: Mesa's lavapipe (22.3) inlines uniforms that decide a branch and
+    // compiles a new shader variant on every draw that rebinds them, keeping each one: with an
+    // `if` here the app grew by ~0.2 MB per object per frame (docs/benchmarks/scene.md)
+    out.uv = select(in.uv, world.xz, object.world_uv > 0.5) * material.uv_scale;
     return out;
 }
 
 // Perturbs the interpolated normal with the tangent-space normal map (stored linear, [0,1]).
 fn mapped_normal(n_in: vec3f, t_in: vec4f, uv: vec2f, strength: f32) -> vec3f {
     let n = normalize(n_in);
-    if (!toggle(g.toggles.y)) {
+    if (!on(g.normal_maps_on)) {
         return n;
     }
     // Gram–Schmidt: re-orthogonalise the interpolated tangent against the normal
@@ -65,12 +66,12 @@ fn mapped_normal(n_in: vec3f, t_in: vec4f, uv: vec2f, strength: f32) -> vec3f {
 
 @fragment
 fn fs_main(in: VertexOut) -> @location(0) vec4f {
-    let n = mapped_normal(in.normal, in.tangent, in.uv, material.params.w);
-    if (debug_view() == DEBUG_NORMALS) {
+    let n = mapped_normal(in.normal, in.tangent, in.uv, material.normal_strength);
+    if (g.debug_view == DEBUG_NORMALS) {
         return vec4f(n * 0.5 + 0.5, 1.0);
     }
-    let v = normalize(g.camera_pos_time.xyz - in.world_pos);
-    let color = shade(material.base_color.rgb, material.params.x, material.params.y,
-                      material.params.z, n, v, in.world_pos, object.flags.y);
+    let v = normalize(g.eye_m - in.world_pos);
+    let color = shade(material.base_color.rgb, material.metallic, material.roughness,
+                      material.reflectance, n, v, in.world_pos, object.ambient_occlusion);
     return vec4f(color, 1.0);
 }

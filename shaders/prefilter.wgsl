@@ -3,12 +3,20 @@
 // importance sampling the GGX normal distribution with a Hammersley set and the N = V = R
 // assumption (Karis 2013, "Real Shading in Unreal Engine 4", split-sum approximation).
 
+//!include fullscreen.wgsl
 //!include cube_face.wgsl
 
+// `PrefilterParams` in src/render/sky.rs
 struct Params {
-    // x roughness, y face, z sample count
-    v: vec4f,
+    roughness: f32,     // perceptual roughness of this mip
+    face: u32,          // cube face being rendered, WebGPU order
+    _pad: vec2u,
 }
+
+// GGX samples per texel. A constant, not a uniform, and no branch on the roughness (at 0 every
+// sample is the mirror direction): lavapipe compiles a variant per value of a uniform that
+// decides a loop or branch (see pbr.wgsl).
+const SAMPLE_COUNT: u32 = 64u;
 
 @group(0) @binding(0) var<uniform> params: Params;
 @group(0) @binding(1) var src_cube: texture_cube<f32>;
@@ -42,13 +50,12 @@ fn importance_sample_ggx(xi: vec2f, alpha: f32, n: vec3f) -> vec3f {
 
 @fragment
 fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
-    let n = face_dir(u32(params.v.y + 0.5), in.ndc);
-    let roughness = params.v.x;
-    if (roughness < 0.01) {
-        return vec4f(textureSampleLevel(src_cube, src_sampler, n, 0.0).rgb, 1.0);
-    }
+    let n = face_dir(params.face, in.ndc);
+    let roughness = params.roughness;
     let alpha = roughness * roughness;
-    let count = u32(params.v.z);
+    let count = SAMPLE_COUNT;
+    // clamp the HDR sun so a few samples hitting it do not sparkle; the sharp mip keeps it
+    let limit = select(vec3f(8.0), vec3f(1e9), roughness < 0.01);
     var sum = vec3f(0.0);
     var weight = 0.0;
     for (var i = 0u; i < count; i++) {
@@ -57,8 +64,7 @@ fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
         let l = normalize(2.0 * dot(n, h) * h - n);
         let n_dot_l = dot(n, l);
         if (n_dot_l > 0.0) {
-            // clamp the HDR sun so a few samples hitting it do not sparkle
-            sum += min(textureSampleLevel(src_cube, src_sampler, l, 0.0).rgb, vec3f(8.0)) * n_dot_l;
+            sum += min(textureSampleLevel(src_cube, src_sampler, l, 0.0).rgb, limit) * n_dot_l;
             weight += n_dot_l;
         }
     }

@@ -6,9 +6,12 @@
 // `sun_visibility` in common.wgsl.
 //!include common.wgsl
 
+// `ObjectGpu` in src/render/pbr.rs
 struct Object {
     world_from_object: mat4x4f,
-    flags: vec4f,
+    world_uv: f32,
+    ambient_occlusion: f32,
+    _pad: vec2f,
 }
 
 @group(1) @binding(0) var<uniform> object: Object;

@@ -3,6 +3,7 @@
 // a cube map, then drawn as the background by looking the cube map up along each pixel's view
 // ray (environment mapping: Blinn & Newell 1976; cube maps: Greene 1986).
 //!include common.wgsl
+//!include fullscreen.wgsl
 //!include cube_face.wgsl
 
 struct SkyParams {
@@ -44,12 +45,12 @@ fn fs_cube_face(in: FullscreenOut) -> @location(0) vec4f {
 @fragment
 fn fs_background(in: FullscreenOut) -> @location(0) vec4f {
     let far = g.world_from_clip * vec4f(in.ndc, 1.0, 1.0);
-    let dir = normalize(far.xyz / far.w - g.camera_pos_time.xyz);
-    if (debug_view() == DEBUG_NORMALS) {
+    let dir = normalize(far.xyz / far.w - g.eye_m);
+    if (g.debug_view == DEBUG_NORMALS) {
         return vec4f(0.0, 0.0, 0.0, 1.0);
     }
     var c: vec3f;
-    if (toggle(g.toggles.x)) {
+    if (on(g.env_map_on)) {
         c = textureSampleLevel(env_cube, env_sampler, dir, 0.0).rgb;
     } else {
         c = mix(vec3f(0.5, 0.6, 0.7), vec3f(0.25, 0.35, 0.6), clamp(dir.y, 0.0, 1.0));

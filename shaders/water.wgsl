@@ -18,7 +18,7 @@ struct VertexOut {
 
 @vertex
 fn vs_main(@location(0) rest_xz: vec2f) -> VertexOut {
-    let s = gerstner(rest_xz, g.camera_pos_time.w);
+    let s = gerstner(rest_xz, g.time_secs);
     var out: VertexOut;
     out.clip = g.clip_from_world * vec4f(s.position, 1.0);
     out.world_pos = s.position;
@@ -28,8 +28,8 @@ fn vs_main(@location(0) rest_xz: vec2f) -> VertexOut {
 
 // Distance along the view axis from a 0..1 depth value (wgpu's perspective).
 fn linear_depth(d: f32) -> f32 {
-    let near = g.scatter.w;
-    let far = g.absorption.w;
+    let near = g.near_m;
+    let far = g.far_m;
     return near * far / (far - d * (far - near));
 }
 
@@ -42,26 +42,26 @@ fn load_depth(uv: vec2f) -> f32 {
 @fragment
 fn fs_main(in: VertexOut) -> @location(0) vec4f {
     // per-pixel analytic normal: the sum evaluated again at this fragment's rest position
-    var n = gerstner(in.rest_xz, g.camera_pos_time.w).normal;
-    let v = normalize(g.camera_pos_time.xyz - in.world_pos);
+    var n = gerstner(in.rest_xz, g.time_secs).normal;
+    let v = normalize(g.eye_m - in.world_pos);
     if (dot(n, v) < 0.0) {
         n = -n; // seen from below
     }
-    if (debug_view() == DEBUG_NORMALS) {
+    if (g.debug_view == DEBUG_NORMALS) {
         return vec4f(n * 0.5 + 0.5, 1.0);
     }
     let n_dot_v = clamp(dot(n, v), 1e-4, 1.0);
 
     // Fresnel weight between reflection and refraction
     var fresnel = 0.25;
-    if (toggle(g.toggles2.x)) {
+    if (on(g.fresnel_on)) {
         fresnel = 0.02 + 0.98 * pow(1.0 - n_dot_v, 5.0);
     }
 
     // reflection of the sky
     let r = reflect(-v, n);
     var reflected: vec3f;
-    if (toggle(g.toggles.x)) {
+    if (on(g.env_map_on)) {
         reflected = textureSampleLevel(env_cube, env_sampler, r, 0.0).rgb;
     } else {
         reflected = vec3f(0.45, 0.55, 0.7);
@@ -70,7 +70,7 @@ fn fs_main(in: VertexOut) -> @location(0) vec4f {
 
     // refraction: offset the screen lookup by the normal's tilt, fall back when that picks up
     // something in front of the surface
-    let screen = g.toggles2.zw;
+    let screen = g.viewport_size_px;
     let uv0 = in.clip.xy / screen;
     let water_dist = linear_depth(in.clip.z);
     var uv = uv0 + n.xz * 0.04 / max(water_dist * 0.15, 1.0);
@@ -82,13 +82,13 @@ fn fs_main(in: VertexOut) -> @location(0) vec4f {
     let below = textureSampleLevel(scene_color, screen_sampler, uv, 0.0).rgb;
     // path length through the water, approximated along the view axis
     let path = max(scene_dist - water_dist, 0.0);
-    let transmittance = exp(-g.absorption.xyz * path);
-    let sun = g.sun_color.rgb * g.sun_dir_intensity.w;
-    let inscatter = g.scatter.rgb * (sun * 0.5 + vec3f(0.5));
+    let transmittance = exp(-g.absorption_per_m * path);
+    let sun = g.sun_color * g.sun_intensity;
+    let inscatter = g.scatter_color * (sun * 0.5 + vec3f(0.5));
     let refracted = below * transmittance + inscatter * (vec3f(1.0) - transmittance);
 
     // sun glint: a sharp GGX lobe, shadowed by the floating bodies
-    let l = normalize(g.sun_dir_intensity.xyz);
+    let l = g.sun_dir;
     let h = normalize(v + l);
     let n_dot_l = max(dot(n, l), 0.0);
     let alpha = 0.15 * 0.15;

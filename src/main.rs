@@ -18,7 +18,7 @@ struct Cli {
 enum Command {
     /// Present a deck in a window (the default).
     Present(cli::present::Args),
-    /// Render every slide to PNG, headless.
+    /// Render every slide to PNG and/or a PDF handout, headless.
     Export(cli::export::Args),
     /// Validate decks, scenes, shaders and problems; print file:line:col for each problem.
     Check(cli::check::Args),
@@ -46,7 +46,9 @@ fn main() -> std::process::ExitCode {
     tracing_subscriber::fmt()
         .with_env_filter(
             tracing_subscriber::EnvFilter::try_from_default_env()
-                .unwrap_or_else(|_| "warn,lectern=info".into()),
+                // wgpu also probes OpenGL; without a GL driver its EGL probe logs an ERROR that
+                // is none (the Vulkan adapter, lavapipe included, is used): keep it quiet.
+                .unwrap_or_else(|_| "warn,lectern=info,wgpu_hal::gles::egl=off".into()),
         )
         .with_writer(std::io::stderr)
         .init();

@@ -181,7 +181,7 @@ fn click_on_the_slide_goes_forward_but_not_on_a_widget() {
     let n = with_widget + 1;
     for key in [Key::G]
         .into_iter()
-        .chain(n.to_string().chars().map(|c| digit_key(c)))
+        .chain(n.to_string().chars().map(digit_key))
         .chain([Key::Enter])
     {
         press(&mut h, key);
@@ -276,4 +276,120 @@ fn snapshots_of_slides_overview_and_help() {
     h.event(Event::Text("?".into()));
     h.run_steps(3);
     h.snapshot_options("app-help", &snapshot_options());
+}
+
+#[test]
+fn frame_stats_append_one_line_per_drawn_frame_with_the_mode() {
+    let (dir, path) = fixture();
+    let stats = dir.path().join("frames.csv");
+    let mut app = LecternApp::new(DeckSession::open(&path).unwrap());
+    app.set_frame_stats(&stats).unwrap();
+    let mut h = Harness::builder()
+        .with_size(SIZE)
+        .wgpu()
+        .build_ui_state(|ui, app: &mut LecternApp| app.frame_ui(ui), app);
+    h.run_steps(4);
+    press(&mut h, Key::Tab);
+    assert_eq!(h.state().mode(), Mode::Scene);
+    h.run_steps(3);
+    let text = std::fs::read_to_string(&stats).unwrap();
+    let lines: Vec<(&str, f64)> = text
+        .lines()
+        .map(|l| {
+            let (mode, ms) = l.split_once(',').unwrap();
+            (mode, ms.parse().unwrap())
+        })
+        .collect();
+    // One line per frame drawn, but the first (no interval yet).
+    let frames = h.ctx.cumulative_frame_nr();
+    assert_eq!(lines.len() as u64 + 1, frames, "{text}");
+    assert!(lines.iter().all(|(_, ms)| *ms >= 0.0));
+    let modes: Vec<&str> = lines.iter().map(|(m, _)| *m).collect();
+    let first_scene = modes.iter().position(|m| *m == "scene").unwrap();
+    assert!(modes[..first_scene].iter().all(|m| *m == "slides"));
+    assert!(modes[first_scene..].iter().all(|m| *m == "scene"));
+    assert!(modes.len() - first_scene >= 3, "{modes:?}");
+}
+
+/// The window clears to the slide's background (or the letterbox colour, or black) and then
+/// does not paint those window-sized rectangles again: a frame must look the same as one that
+/// paints them. Rendered headless as the window renders: cleared to the app's clear colour.
+#[test]
+fn window_clear_colour_shows_the_same_pixels_as_painting_the_background() {
+    use std::cell::Cell;
+    let (_dir, path) = fixture();
+    let mut r = lectern::app::OffscreenRenderer::software_first().unwrap();
+    // 16:9 (no letterbox) and 4:3 (bars above and below).
+    for size in [[960, 540], [800, 600]] {
+        for keys in [
+            &[][..],
+            &[Key::ArrowRight],
+            &[Key::ArrowRight, Key::ArrowRight],
+            &[Key::O],
+            &[Key::B],
+            &[Key::P],
+        ] {
+            let mut render = |window_clear: bool| {
+                let mut app = LecternApp::new(DeckSession::open(&path).unwrap());
+                app.set_window_clear(window_clear);
+                let events: Vec<Event> = keys
+                    .iter()
+                    .map(|k| lectern::app::keys::press(*k, Modifiers::NONE))
+                    .collect();
+                let mut sent = false;
+                let clear = Cell::new(egui::Color32::from_rgb(255, 0, 255));
+                let img = r
+                    .render_cleared(
+                        size,
+                        1.0,
+                        |ui| {
+                            // The keys once, in the first pass; the slide settles in the others.
+                            if !sent {
+                                ui.ctx()
+                                    .input_mut(|i| i.events.extend(events.iter().cloned()));
+                                sent = true;
+                            }
+                            app.frame_ui(ui);
+                            if window_clear {
+                                clear.set(app.clear_color32());
+                            }
+                        },
+                        &clear,
+                    )
+                    .unwrap();
+                (img, app.nav().index())
+            };
+            let (painted, at) = render(false);
+            let (cleared, at_too) = render(true);
+            assert_eq!(at, at_too);
+            let mut differ = 0;
+            let mut worst = 0;
+            for (p, q) in painted.pixels().zip(cleared.pixels()) {
+                for i in 0..3 {
+                    let d = p.0[i].abs_diff(q.0[i]);
+                    worst = worst.max(d);
+                    differ += usize::from(d > 2);
+                }
+            }
+            assert!(
+                differ <= 20,
+                "{size:?} after {keys:?}: {differ} channel values differ, worst by {worst}"
+            );
+        }
+    }
+}
+
+/// The window drops the release of slide keys (each event egui sees costs frames): a press
+/// alone must work, twice, and leave no key held in egui's input state.
+#[test]
+fn slide_keys_work_without_their_release_and_are_not_left_held() {
+    let (_dir, path) = fixture();
+    let mut h = harness(&path);
+    h.run_steps(2);
+    for want in [1, 2] {
+        h.key_down(Key::ArrowRight);
+        h.run_steps(2);
+        assert_eq!(index(&h), want);
+        assert!(!h.ctx.input(|i| i.key_down(Key::ArrowRight)));
+    }
 }

@@ -244,11 +244,8 @@ fn presenter_view_snapshot() {
         .with_size([1280.0, 800.0])
         .wgpu()
         .build_ui(|ui| {
-            let info = PresenterInfo {
-                pace: p.report(),
-                problems: &[],
-                bookmarks: &[(1, "big h (spiral)".to_owned())],
-            };
+            let marks = [(1, "big h (spiral)".to_owned())];
+            let info = PresenterInfo::new(p.report(), &[], &marks);
             presenter_ui(ui, &deck, 0, &mut states, &info, None);
         });
     harness.run_steps(3);
@@ -271,11 +268,7 @@ fn presenter_view_in_scene_mode_shows_the_scene_panel() {
     let mut harness = Harness::builder()
         .with_size([1280.0, 800.0])
         .build_ui(|ui| {
-            let info = PresenterInfo {
-                pace: p.report(),
-                problems: &[],
-                bookmarks: &[],
-            };
+            let info = PresenterInfo::new(p.report(), &[], &[]);
             let mut panel = |ui: &mut egui::Ui| {
                 ui.label("scene panel: fish count");
             };
@@ -295,11 +288,7 @@ fn presenter_view_in_scene_mode_shows_the_scene_panel() {
     let mut harness = Harness::builder()
         .with_size([1280.0, 800.0])
         .build_ui(|ui| {
-            let info = PresenterInfo {
-                pace: p.report(),
-                problems: &[],
-                bookmarks: &[],
-            };
+            let info = PresenterInfo::new(p.report(), &[], &[]);
             let mut panel = |ui: &mut egui::Ui| {
                 ui.label("scene panel: fish count");
             };

@@ -353,3 +353,13 @@ fn range_errors_point_at_the_offending_occurrence_not_the_first() {
         assert_eq!(d.col, col, "{to}: {d}");
     }
 }
+
+/// A scene file that leaves a section out gets what the shipped scene has.
+#[test]
+fn the_code_defaults_are_the_shipped_scene() {
+    let s = scene::load_scene(std::path::Path::new(scene::DEFAULT_SCENE)).unwrap();
+    assert_eq!(s.sky, scene::model::Sky::default());
+    assert_eq!(s.simulation, scene::Simulation::default());
+    assert_eq!(s.school, scene::model::default_school());
+    assert_eq!(s.quality, scene::Quality::default());
+}

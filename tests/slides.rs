@@ -126,3 +126,66 @@ fn every_slide_matches_its_snapshot() {
     }
     results.unwrap();
 }
+
+/// Every piece of text a slide draws in a colour of its own (control labels in a method's
+/// colour, slope labels, legends, the footer) reaches WCAG's 4.5:1 against the slide's
+/// background and the plots' background, on both themes. Text egui fades on purpose (alpha
+/// below 255: grid labels fading out as they get dense) is left out.
+#[test]
+fn every_coloured_text_is_readable_on_both_themes() {
+    use egui::epaint::Shape;
+    use lectern::widgets::style::{MIN_TEXT_CONTRAST, contrast_ratio};
+    fn texts(shape: &Shape, out: &mut Vec<(String, egui::Color32)>) {
+        match shape {
+            Shape::Vec(v) => v.iter().for_each(|s| texts(s, out)),
+            Shape::Text(t) => {
+                for section in &t.galley.job.sections {
+                    let color = t.override_text_color.unwrap_or(section.format.color);
+                    let color = if color == egui::Color32::PLACEHOLDER {
+                        t.fallback_color
+                    } else {
+                        color
+                    };
+                    let r = &section.byte_range;
+                    let text = t.galley.job.text[r.start.0..r.end.0].to_string();
+                    if color.a() == 255 && !text.trim().is_empty() {
+                        out.push((text, color));
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    work_precision::DETERMINISTIC.store(true, Ordering::Relaxed);
+    let mut failures = Vec::new();
+    for theme in [lectern::deck::Theme::Dark, lectern::deck::Theme::Light] {
+        let mut d = deck();
+        d.theme = theme;
+        let palette = lectern::app::theme::Palette::of(theme);
+        let deck = Arc::new(d);
+        for n in 0..deck.slides.len() {
+            let shown = deck.clone();
+            let mut state = SlideState::default();
+            let mut h = Harness::builder().with_size(SIZE).build_ui(move |ui| {
+                slide_ui(ui, &shown, n, &mut state);
+            });
+            h.run_steps(3);
+            let mut found = Vec::new();
+            for clipped in &h.output().shapes {
+                texts(&clipped.shape, &mut found);
+            }
+            for (text, color) in found {
+                let ratio = contrast_ratio(color, palette.background)
+                    .min(contrast_ratio(color, palette.panel));
+                if ratio < MIN_TEXT_CONTRAST {
+                    failures.push(format!(
+                        "{theme:?} slide {}: {text:?} in {color:?}: {ratio:.2}:1",
+                        n + 1
+                    ));
+                }
+            }
+        }
+    }
+    failures.dedup();
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}

@@ -1,7 +1,8 @@
 //! What the keys do: the app's input is turned into [`Action`]s by the pure key map in
 //! [`super::keys`], and applied here, bookmarks included.
 
-use super::keys::{self, Action};
+use super::ink::InkTool;
+use super::keys::{self, Action, KeyMode};
 use super::lectern_app::{LecternApp, Mode, Overlay};
 use super::tweaks::{apply_declared, write_back};
 
@@ -23,15 +24,23 @@ impl LecternApp {
                 }
                 continue;
             }
-            let typing = matches!(self.overlay, Overlay::Goto(_));
-            handled.push(keys::is_handled(event, typing));
-            for action in keys::actions(std::slice::from_ref(event), typing) {
+            let mode = if matches!(self.overlay, Overlay::Goto(_)) {
+                KeyMode::TypingNumber
+            } else if self.ink.is_drawing() {
+                KeyMode::Drawing
+            } else {
+                KeyMode::Normal
+            };
+            handled.push(keys::is_handled(event, mode));
+            for action in keys::actions(std::slice::from_ref(event), mode) {
                 self.apply(action, ctx);
             }
         }
         ctx.input_mut(|i| {
             let mut flags = handled.into_iter();
             i.events.retain(|_| !flags.next().unwrap_or(false));
+            // The window drops these keys' releases: never leave them held in egui's state.
+            i.keys_down.retain(|k| !keys::release_is_ignored(*k));
         });
     }
 
@@ -99,6 +108,8 @@ impl LecternApp {
                 let full = ctx.input(|i| i.viewport().fullscreen.unwrap_or(false));
                 if self.overlay != Overlay::None {
                     self.overlay = Overlay::None;
+                } else if self.ink.stop() {
+                    self.say(ctx, "drawing off");
                 } else if self.black {
                     self.black = false;
                 } else if full {
@@ -146,7 +157,47 @@ impl LecternApp {
                 };
                 self.say(ctx, msg);
             }
+            TogglePen => self.toggle_ink(InkTool::Pen, ctx),
+            ToggleHighlighter => self.toggle_ink(InkTool::Highlighter, ctx),
+            ToggleLaser => self.toggle_ink(InkTool::Laser, ctx),
+            InkColor(slot) => {
+                self.ink.set_color(slot);
+                self.say(ctx, format!("ink colour {}", slot + 1));
+            }
+            UndoInk => {
+                let key = self.current_key();
+                let msg = self.ink.undo(&key);
+                self.say(ctx, msg);
+                ctx.request_repaint();
+            }
+            ClearInk => {
+                let key = self.current_key();
+                let msg = self.ink.clear(&key);
+                self.say(ctx, msg);
+                ctx.request_repaint();
+            }
         }
+    }
+
+    fn toggle_ink(&mut self, tool: InkTool, ctx: &egui::Context) {
+        let msg = self.ink.toggle(tool);
+        if self.mode == Mode::Scene {
+            self.say(
+                ctx,
+                format!("{msg} (ink is drawn on slides; Tab returns to them)"),
+            );
+        } else {
+            self.say(ctx, msg);
+        }
+    }
+
+    /// The key (id, else title) of the slide on screen.
+    fn current_key(&self) -> String {
+        let deck = self.session.deck();
+        deck.slides
+            .get(self.session.nav().index())
+            .map(|s| s.key().to_owned())
+            .unwrap_or_default()
     }
 
     /// `1…9`: a stored bookmark if there is one, else the deck's declared one.

@@ -50,7 +50,15 @@ impl LecternApp {
             return;
         };
         let file = folder.join(format!("{}-live.png", slide.key()));
-        let msg = match r.render_slide(deck, index, state, [1920, 1080]) {
+        // As shown: with the slide's ink (the laser and a stroke in progress are not ink).
+        let options = super::SlideOptions {
+            ink: super::ink_draw::InkView {
+                strokes: self.ink.file().ink().strokes(slide.key()),
+                ..Default::default()
+            },
+            ..Default::default()
+        };
+        let msg = match r.render_slide_with(deck, index, state, [1920, 1080], options) {
             Ok(img) => match img.save(&file) {
                 Ok(()) => format!("exported {}", file.display()),
                 Err(e) => format!("cannot write {}: {e}", file.display()),

@@ -41,6 +41,27 @@ pub enum Action {
     ExportSlide,
     /// `Ctrl+S`: write the current tweaks back into the deck file.
     WriteBack,
+    /// `D`: the pen on / off (drawing on the slide).
+    TogglePen,
+    /// `H`: the highlighter on / off.
+    ToggleHighlighter,
+    /// `L`: the laser pointer on / off.
+    ToggleLaser,
+    /// `1…5` while drawing: ink colour slot 0…4 of the theme.
+    InkColor(u8),
+    /// `Ctrl+Z`: remove this slide's newest stroke.
+    UndoInk,
+    /// `Shift+D`: remove all ink on this slide.
+    ClearInk,
+}
+
+/// What the keys mean right now: digits go to the slide number while typing one after `G`,
+/// to the ink colour while drawing, else to bookmarks.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum KeyMode {
+    Normal,
+    TypingNumber,
+    Drawing,
 }
 
 /// One line per key for the `?` overlay: (keys, what they do).
@@ -60,17 +81,16 @@ pub const HELP: &[(&str, &str)] = &[
     ("Ctrl+1…9 1…9", "store / recall a tweak bookmark"),
     ("Ctrl+S", "write tweaks and typed equations back"),
     ("E", "export this slide as PNG"),
+    ("D H L", "pen / highlighter / laser pointer"),
+    ("1…5 (drawing)", "ink colour"),
+    ("Ctrl+Z Shift+D", "undo a stroke / clear the slide's ink"),
     ("?", "this list"),
-    ("Esc", "close overlays, leave fullscreen"),
+    ("Esc", "close overlays, stop drawing, fullscreen"),
 ];
 
-/// The actions in `events`. `typing_number` is true while `G` collects digits, which then go
-/// to the number instead of recalling bookmarks.
-pub fn actions(events: &[Event], typing_number: bool) -> Vec<Action> {
-    events
-        .iter()
-        .filter_map(|e| action(e, typing_number))
-        .collect()
+/// The actions in `events`, read in `mode`.
+pub fn actions(events: &[Event], mode: KeyMode) -> Vec<Action> {
+    events.iter().filter_map(|e| action(e, mode)).collect()
 }
 
 /// While a text field has the keyboard (the presenter typing an equation), the only key the
@@ -88,9 +108,16 @@ pub fn while_editing(event: &Event) -> Option<Action> {
 }
 
 /// Whether the app handles `event` (so it can be taken out before widgets see it).
-pub fn is_handled(event: &Event, typing_number: bool) -> bool {
-    action(event, typing_number).is_some()
-        || matches!(event, Event::Key { key, .. } if claimed_key(*key))
+pub fn is_handled(event: &Event, mode: KeyMode) -> bool {
+    action(event, mode).is_some() || matches!(event, Event::Key { key, .. } if claimed_key(*key))
+}
+
+/// Keys whose release means nothing to the app or to egui: the window drops their release
+/// events, and [`crate::app::LecternApp`] forgets them as held once pressed. Each input event
+/// costs egui two more frames, and on a software renderer a frame costs tens of ms, so a
+/// clicker's PageDown is three frames instead of up to six.
+pub fn release_is_ignored(key: Key) -> bool {
+    claimed_key(key)
 }
 
 /// Keys we act on when pressed; their release (and repeats) are ours too.
@@ -110,7 +137,7 @@ fn claimed_key(key: Key) -> bool {
     )
 }
 
-fn action(event: &Event, typing_number: bool) -> Option<Action> {
+fn action(event: &Event, mode: KeyMode) -> Option<Action> {
     use Action::*;
     match event {
         // '?' comes as text, whatever the keyboard layout puts it on.
@@ -122,7 +149,7 @@ fn action(event: &Event, typing_number: bool) -> Option<Action> {
             ..
         } => {
             let digit = digit_of(*key);
-            if typing_number {
+            if mode == KeyMode::TypingNumber {
                 return match (key, digit) {
                     (_, Some(d)) => Some(GotoDigit(d)),
                     (Key::Enter, _) => Some(GotoConfirm),
@@ -136,6 +163,7 @@ fn action(event: &Event, typing_number: bool) -> Option<Action> {
                 return match (key, digit) {
                     (_, Some(d @ 1..=9)) => Some(BookmarkStore(d)),
                     (Key::S, _) => Some(WriteBack),
+                    (Key::Z, _) if !modifiers.shift => Some(UndoInk),
                     _ => None,
                 };
             }
@@ -159,7 +187,12 @@ fn action(event: &Event, typing_number: bool) -> Option<Action> {
                 Key::E => ExportSlide,
                 Key::T if modifiers.shift => TimerReset,
                 Key::T => TimerPause,
+                Key::D if modifiers.shift => ClearInk,
+                Key::D => TogglePen,
+                Key::H => ToggleHighlighter,
+                Key::L => ToggleLaser,
                 _ => match digit {
+                    Some(d @ 1..=5) if mode == KeyMode::Drawing => InkColor(d - 1),
                     Some(d @ 1..=9) => BookmarkRecall(d),
                     _ => return None,
                 },
@@ -211,7 +244,10 @@ mod tests {
             press(Key::ArrowLeft, none),
             press(Key::End, none),
         ];
-        assert_eq!(actions(&ev, false), vec![Next, Prev, Next, Prev, Last]);
+        assert_eq!(
+            actions(&ev, KeyMode::Normal),
+            vec![Next, Prev, Next, Prev, Last]
+        );
     }
 
     #[test]
@@ -223,12 +259,12 @@ mod tests {
             press(Key::Enter, none),
         ];
         assert_eq!(
-            actions(&ev, true),
+            actions(&ev, KeyMode::TypingNumber),
             vec![GotoDigit(1), GotoDigit(2), GotoConfirm]
         );
-        assert_eq!(actions(&ev[..1], false), vec![BookmarkRecall(1)]);
+        assert_eq!(actions(&ev[..1], KeyMode::Normal), vec![BookmarkRecall(1)]);
         assert_eq!(
-            actions(&[press(Key::Num3, Modifiers::CTRL)], false),
+            actions(&[press(Key::Num3, Modifiers::CTRL)], KeyMode::Normal),
             vec![BookmarkStore(3)]
         );
     }
@@ -254,6 +290,72 @@ mod tests {
 
     #[test]
     fn question_mark_from_text() {
-        assert_eq!(actions(&[Event::Text("?".into())], false), vec![ToggleHelp]);
+        assert_eq!(
+            actions(&[Event::Text("?".into())], KeyMode::Normal),
+            vec![ToggleHelp]
+        );
+    }
+
+    #[test]
+    fn ink_keys_and_colours_while_drawing() {
+        let none = Modifiers::NONE;
+        let ev = [
+            press(Key::D, none),
+            press(Key::H, none),
+            press(Key::L, none),
+            press(Key::Z, Modifiers::CTRL),
+            press(Key::D, Modifiers::SHIFT),
+        ];
+        let want = vec![TogglePen, ToggleHighlighter, ToggleLaser, UndoInk, ClearInk];
+        assert_eq!(actions(&ev, KeyMode::Normal), want);
+        assert_eq!(actions(&ev, KeyMode::Drawing), want);
+        // Ctrl+Shift+Z is not undo (it would be redo elsewhere).
+        assert!(
+            actions(
+                &[press(Key::Z, Modifiers::CTRL | Modifiers::SHIFT)],
+                KeyMode::Normal
+            )
+            .is_empty()
+        );
+        // 1-5 pick a colour while drawing, and still recall bookmarks otherwise; 6 stays a
+        // bookmark; Ctrl+digit always stores one.
+        let digits = [
+            press(Key::Num1, none),
+            press(Key::Num5, none),
+            press(Key::Num6, none),
+            press(Key::Num2, Modifiers::CTRL),
+        ];
+        assert_eq!(
+            actions(&digits, KeyMode::Drawing),
+            vec![
+                InkColor(0),
+                InkColor(4),
+                BookmarkRecall(6),
+                BookmarkStore(2)
+            ]
+        );
+        assert_eq!(
+            actions(&digits, KeyMode::Normal),
+            vec![
+                BookmarkRecall(1),
+                BookmarkRecall(5),
+                BookmarkRecall(6),
+                BookmarkStore(2)
+            ]
+        );
+        // The keys are taken out of the input before slide widgets see them.
+        assert!(is_handled(&press(Key::D, none), KeyMode::Normal));
+        assert!(is_handled(
+            &press(Key::Z, Modifiers::CTRL),
+            KeyMode::Drawing
+        ));
+    }
+
+    #[test]
+    fn help_lists_every_ink_key() {
+        let keys: String = HELP.iter().map(|(k, _)| *k).collect::<Vec<_>>().join(" ");
+        for k in ["D", "H", "L", "Ctrl+Z", "Shift+D", "1…5"] {
+            assert!(keys.contains(k), "{k} missing from the ? list");
+        }
     }
 }

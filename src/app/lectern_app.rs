@@ -8,16 +8,25 @@
 use std::path::PathBuf;
 use std::time::Duration;
 
+use super::frame_stats::FrameClock;
+use super::ink::InkState;
+use super::ink_draw::paint_on_slide;
 use super::offscreen::OffscreenRenderer;
 use super::overlays;
 use super::pacing::Pacing;
+use super::scene_mode::SceneMode;
 use super::screens::{MonitorRect, ScreenPlan};
-use super::slide_view::{DeckState, SlideState, black_ui, slide_ui};
+use super::slide_view::{DeckState, SlideOptions, SlideState, black_ui, slide_ui_with};
 use super::theme::Palette;
 use super::tweaks::Bookmarks;
 use crate::deck::{DeckSession, Nav};
 use crate::reload::Reloaded;
-use crate::render::SceneView;
+
+/// How long the deck's folder must be quiet after a change before it is reloaded. Editors
+/// finish a save (write, rename) within a few milliseconds; 150 ms made a save take ~300 ms to
+/// reach the screen. An empty file mid-save is skipped anyway, and a half-written one shows
+/// its error only until the rest of the save arrives a tick later.
+pub const RELOAD_DEBOUNCE: Duration = Duration::from_millis(50);
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Mode {
@@ -47,7 +56,7 @@ pub struct LecternApp {
     /// The water scene file scene mode shows.
     pub scene_path: PathBuf,
     /// Created on the first `Tab` (it needs the GPU); an error is shown in its place.
-    pub(super) scene: Option<Result<SceneView, String>>,
+    pub(super) scene: Option<Result<SceneMode, String>>,
     /// `C`: the live controls (scene panel) on the audience screen.
     pub(super) show_controls: bool,
     pub(super) pacing: Pacing,
@@ -66,10 +75,22 @@ pub struct LecternApp {
     pub(super) screen_plan: ScreenPlan,
     /// The audience window was sent to its monitor.
     pub(super) placed: bool,
+    /// Ink on the slides (`DECK.ink.ron`) and the drawing tools.
+    pub(super) ink: InkState,
+    /// Wall time between drawn frames (`--frame-stats`, the scene panel's readout).
+    pub(super) frames: FrameClock,
+    /// What the window is cleared to before the frame is painted ([`Self::clear_color32`]).
+    pub(super) clear: egui::Color32,
+    /// Drawing into a window cleared to [`Self::clear_color32`]: what that colour already
+    /// covers (the slide's background, the letterbox around the overview and the presenter
+    /// view, the black screen) is not painted again. On a software rasteriser each
+    /// window-sized rectangle costs tens of milliseconds of CPU per frame.
+    pub(super) window_clear: bool,
 }
 
 impl LecternApp {
     pub fn new(session: DeckSession) -> Self {
+        let ink = InkState::for_deck(session.path());
         Self {
             states: DeckState::default(),
             mode: Mode::Slides,
@@ -91,7 +112,29 @@ impl LecternApp {
             screens: Vec::new(),
             screen_plan: ScreenPlan::Single,
             placed: false,
+            ink,
+            frames: FrameClock::default(),
+            clear: egui::Color32::BLACK,
+            window_clear: false,
         }
+    }
+
+    /// See [`Self::clear_color32`]: on in the window (eframe clears it to that colour), off
+    /// for headless renders and egui_kittest, whose targets are not cleared to it.
+    pub fn set_window_clear(&mut self, on: bool) {
+        self.window_clear = on;
+    }
+
+    /// The colour under everything the last frame painted: the slide's background, the
+    /// letterbox colour, or black.
+    pub fn clear_color32(&self) -> egui::Color32 {
+        self.clear
+    }
+
+    /// `--frame-stats FILE`: append `mode,frame_ms` to `path` for every drawn frame.
+    pub fn set_frame_stats(&mut self, path: &std::path::Path) -> std::io::Result<()> {
+        self.frames = FrameClock::with_file(path)?;
+        Ok(())
     }
 
     /// Starts hot reload: the deck's folder is watched and `ctx` repainted on each change.
@@ -99,7 +142,7 @@ impl LecternApp {
         let ctx = ctx.clone();
         if let Err(e) = self
             .session
-            .watch(Duration::from_millis(150), move || ctx.request_repaint())
+            .watch(RELOAD_DEBOUNCE, move || ctx.request_repaint())
         {
             tracing::warn!("hot reload is off: {e}");
         }
@@ -125,9 +168,18 @@ impl LecternApp {
         self.black
     }
 
+    /// The ink and the drawing tools.
+    pub fn ink(&self) -> &InkState {
+        &self.ink
+    }
+
     /// Applies file changes seen by the watcher. Cheap when nothing changed.
     pub fn pump_reload(&mut self) {
-        if let Some(Reloaded::Updated) = self.session.pump() {
+        let (changed, outcome) = self.session.pump_changes();
+        if !changed.is_empty() {
+            self.ink.on_changes(&changed);
+        }
+        if let Some(Reloaded::Updated) = outcome {
             self.states.retain_deck(self.session.deck());
             self.session.take_replaced();
             self.pacing
@@ -142,8 +194,13 @@ impl LecternApp {
 
     /// One whole frame: reload, keys, the slide or scene, overlays.
     pub fn frame_ui(&mut self, ui: &mut egui::Ui) {
-        self.pump_reload();
         let ctx = ui.ctx().clone();
+        self.frames.tick(
+            ctx.cumulative_frame_nr(),
+            self.mode,
+            std::time::Instant::now(),
+        );
+        self.pump_reload();
         self.handle_keys(&ctx);
         self.track_pace(&ctx);
         self.place_audience(&ctx);
@@ -151,6 +208,7 @@ impl LecternApp {
             self.show_presenter_window(&ctx);
         }
         if self.presenter_overlay {
+            self.clear = Palette::of(crate::deck::Theme::Dark).letterbox;
             self.presenter_ui(ui);
             return;
         }
@@ -158,10 +216,20 @@ impl LecternApp {
         let deck = self.session.deck();
         let palette = Palette::of(deck.theme);
         let index = self.session.nav().index();
+        let fill = !self.window_clear;
+        self.clear = match (self.mode, &self.overlay) {
+            _ if self.black => egui::Color32::BLACK,
+            (Mode::Slides, Overlay::Overview) | (Mode::Scene, _) => palette.letterbox,
+            (Mode::Slides, _) => palette.background,
+        };
         match (self.mode, &self.overlay) {
-            (_, _) if self.black => black_ui(ui),
+            (_, _) if self.black => {
+                if fill {
+                    black_ui(ui);
+                }
+            }
             (Mode::Slides, Overlay::Overview) => {
-                let picked = overlays::overview_ui(ui, deck, index, &mut self.states);
+                let picked = overlays::overview_ui(ui, deck, index, &mut self.states, fill);
                 if let Some(i) = picked {
                     self.session.navigate(|nav, deck| nav.go(deck, i));
                     self.overlay = Overlay::None;
@@ -169,9 +237,25 @@ impl LecternApp {
             }
             (Mode::Slides, _) => {
                 let slide = &deck.slides[index];
-                let resp = slide_ui(ui, deck, index, self.states.slide(slide));
-                if resp.background.clicked() && self.overlay == Overlay::None {
+                let now = ctx.input(|i| i.time);
+                let drawing = self.ink.is_drawing() && self.overlay == Overlay::None;
+                let options = SlideOptions {
+                    drawing,
+                    background: fill,
+                    ..SlideOptions::default()
+                };
+                let resp = slide_ui_with(ui, deck, index, self.states.slide(slide), options);
+                let (key, theme) = (slide.key().to_owned(), deck.theme);
+                // The pointer first, then the ink: a stroke shows in the frame it is drawn.
+                let mut said = None;
+                if drawing {
+                    said = self.ink.input_ui(&ctx, &key, &resp);
+                } else if resp.background.clicked() && self.overlay == Overlay::None {
                     self.session.navigate(|nav, deck| nav.next(deck));
+                }
+                paint_on_slide(ui, &resp, theme, &self.ink.view(&key, now));
+                if let Some(msg) = said {
+                    self.say(&ctx, msg);
                 }
             }
             (Mode::Scene, _) => self.scene_ui(ui, &palette),
@@ -252,9 +336,10 @@ impl LecternApp {
             return;
         };
         let path = self.scene_path.clone();
-        let scene = self
-            .scene
-            .get_or_insert_with(|| SceneView::new(&rs, &path).map_err(|e| format!("{e:#}")));
+        let ctx = ui.ctx().clone();
+        let scene = self.scene.get_or_insert_with(|| {
+            SceneMode::new(&rs, &path, move || ctx.request_repaint()).map_err(|e| format!("{e:#}"))
+        });
         match scene {
             Ok(view) => {
                 // The panel belongs to the presenter window, or to `C`: no button for the audience.
@@ -278,7 +363,19 @@ impl LecternApp {
 
 /// The scene's panel for the presenter view (it takes the place of the current slide).
 /// A free function so the presenter view can borrow the scene beside the deck state.
-pub(super) fn scene_panel_ui(scene: &mut Option<Result<SceneView, String>>, ui: &mut egui::Ui) {
+/// `frame_ms` is the app's own wall time between drawn frames (what `--frame-stats` writes):
+/// on a software renderer the GPU work dominates and a CPU-side timer would flatter it.
+pub(super) fn scene_panel_ui(
+    scene: &mut Option<Result<SceneMode, String>>,
+    frame_ms: Option<f32>,
+    ui: &mut egui::Ui,
+) {
+    if let Some(ms) = frame_ms {
+        ui.label(format!(
+            "frame {ms:.0} ms ({:.1} fps), wall time between drawn frames",
+            1e3 / ms.max(1e-3)
+        ));
+    }
     match scene {
         Some(Ok(view)) => view.controls_ui(ui),
         Some(Err(e)) => {
@@ -304,7 +401,18 @@ impl eframe::App for LecternApp {
     fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
         if self.render_state.is_none() {
             self.render_state = frame.wgpu_render_state().cloned();
+            let software = self.render_state.as_ref().is_some_and(|rs| {
+                rs.adapter.get_info().device_type == egui_wgpu::wgpu::DeviceType::Cpu
+            });
+            self.ink.set_plain_edges(software);
         }
+        self.window_clear = true;
         self.frame_ui(ui);
+    }
+
+    /// The root window is cleared to what lies under the frame (see [`Self::clear_color32`]).
+    /// (eframe clears the presenter's window, an immediate viewport, to black.)
+    fn clear_color(&self, _visuals: &egui::Visuals) -> [f32; 4] {
+        self.clear.to_normalized_gamma_f32()
     }
 }

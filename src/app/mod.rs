@@ -4,7 +4,10 @@
 mod actions;
 mod blocks;
 mod files;
+pub mod frame_stats;
 mod images;
+pub mod ink;
+pub mod ink_draw;
 pub mod keys;
 mod lectern_app;
 mod ode_editor;
@@ -12,6 +15,8 @@ pub mod offscreen;
 pub mod overlays;
 pub mod pacing;
 pub mod presenter;
+pub mod scene_mode;
+mod scene_panel;
 pub mod screens;
 pub mod slide_view;
 pub mod theme;
@@ -21,6 +26,7 @@ mod windows;
 
 pub use lectern_app::{LecternApp, Mode, Overlay};
 pub use offscreen::{OffscreenError, OffscreenRenderer, render_slide_png};
+pub use scene_mode::SceneMode;
 pub use slide_view::{
     DeckState, SlideOptions, SlideResponse, SlideState, TweakSnapshot, slide_ui, slide_ui_with,
 };

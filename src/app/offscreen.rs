@@ -3,6 +3,7 @@
 //! "export this slide" all come through here; any adapter works, including Mesa's software
 //! lavapipe / llvmpipe, so no display and no GPU are needed.
 
+use std::cell::Cell;
 use std::sync::Arc;
 use std::time::Duration;
 
@@ -122,7 +123,19 @@ impl OffscreenRenderer {
         &mut self,
         size: [u32; 2],
         pixels_per_point: f32,
+        ui: impl FnMut(&mut egui::Ui),
+    ) -> Result<RgbaImage, OffscreenError> {
+        self.render_cleared(size, pixels_per_point, ui, &Cell::new(egui::Color32::BLACK))
+    }
+
+    /// [`Self::render`] onto a target cleared to `clear` (read when the last pass is painted,
+    /// so `ui` may set it, as the window's clear colour follows the app's state).
+    pub fn render_cleared(
+        &mut self,
+        size: [u32; 2],
+        pixels_per_point: f32,
         mut ui: impl FnMut(&mut egui::Ui),
+        clear: &Cell<egui::Color32>,
     ) -> Result<RgbaImage, OffscreenError> {
         let [w, h] = size;
         if !(16..=8192).contains(&w) || !(16..=8192).contains(&h) {
@@ -152,7 +165,7 @@ impl OffscreenRenderer {
             last = Some((out, delta));
         }
         let (out, mut delta) = last.expect("three passes ran");
-        let image = self.paint(&out, [w, h], pixels_per_point);
+        let image = self.paint(&out, [w, h], pixels_per_point, clear.get());
         // egui frees textures only after the frame that last used them is painted.
         self.free_textures(&delta);
         delta.clear();
@@ -168,9 +181,21 @@ impl OffscreenRenderer {
         state: &mut SlideState,
         size: [u32; 2],
     ) -> Result<RgbaImage, OffscreenError> {
+        self.render_slide_with(deck, index, state, size, SlideOptions::default())
+    }
+
+    /// Slide `index` of `deck` at `size` pixels, drawn with `options` (e.g. with its ink).
+    pub fn render_slide_with(
+        &mut self,
+        deck: &Deck,
+        index: usize,
+        state: &mut SlideState,
+        size: [u32; 2],
+        options: SlideOptions,
+    ) -> Result<RgbaImage, OffscreenError> {
         let ppp = slide_pixels_per_point(deck, size);
         self.render(size, ppp, |ui| {
-            slide_ui_with(ui, deck, index, state, SlideOptions::default());
+            slide_ui_with(ui, deck, index, state, options);
         })
     }
 
@@ -200,6 +225,7 @@ impl OffscreenRenderer {
         out: &egui::FullOutput,
         [w, h]: [u32; 2],
         pixels_per_point: f32,
+        clear: egui::Color32,
     ) -> Result<RgbaImage, OffscreenError> {
         let rs = &self.render_state;
         let screen = ScreenDescriptor {
@@ -238,7 +264,7 @@ impl OffscreenRenderer {
                         view: &view,
                         resolve_target: None,
                         ops: wgpu::Operations {
-                            load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                            load: wgpu::LoadOp::Clear(clear_color(clear)),
                             store: wgpu::StoreOp::Store,
                         },
                         depth_slice: None,
@@ -268,6 +294,13 @@ pub fn slide_pixels_per_point(deck: &Deck, size: [u32; 2]) -> f32 {
     let [w, h] = size.map(|v| v.max(1) as f32);
     let layout_h = SLIDE_LAYOUT_WIDTH_PT / deck.aspect.ratio();
     (w / SLIDE_LAYOUT_WIDTH_PT).min(h / layout_h)
+}
+
+/// `c` as the render pass's clear value: egui paints gamma-encoded colours into a target that
+/// stores them as they are (no sRGB conversion), so the clear takes the same encoding.
+fn clear_color(c: egui::Color32) -> wgpu::Color {
+    let [r, g, b, a] = c.to_normalized_gamma_f32().map(f64::from);
+    wgpu::Color { r, g, b, a }
 }
 
 /// Copies an RGBA8 texture into an image (rows padded to wgpu's 256-byte alignment, then

@@ -43,10 +43,14 @@ pub fn help_ui(ui: &mut egui::Ui, palette: &Palette) {
         .fixed_pos(egui::Pos2::ZERO)
         .show(&ctx, |ui| {
             dim_backdrop(ui, 170);
-            let s = text_size(ui);
             let serif = theme::family_or_default(&ctx, theme::SERIF);
             let bold = theme::family_or_default(&ctx, theme::SERIF_BOLD);
             let screen = ctx.content_rect();
+            // As large as the window's text, but every line on the card.
+            let rows = HELP.len() as f32 + 2.6;
+            let s = text_size(ui)
+                .min(screen.height() * 0.96 / (1.45 * rows))
+                .min(screen.width() * 0.96 / 32.0);
             let row_h = s * 1.45;
             let size = vec2(s * 32.0, row_h * (HELP.len() as f32 + 2.6));
             let rect = Rect::from_center_size(screen.center(), size.min(screen.size() * 0.96));
@@ -110,15 +114,19 @@ pub fn goto_ui(ui: &mut egui::Ui, typed: &str, slides: usize, palette: &Palette)
 }
 
 /// The overview grid: every slide live and small; returns the slide clicked, if any.
+/// `fill`: paint the letterbox colour behind the grid (a window cleared to it skips that).
 pub fn overview_ui(
     ui: &mut egui::Ui,
     deck: &Deck,
     current: usize,
     states: &mut DeckState,
+    fill: bool,
 ) -> Option<usize> {
     let palette = Palette::of(deck.theme);
     let avail = ui.available_rect_before_wrap();
-    ui.painter().rect_filled(avail, 0.0, palette.letterbox);
+    if fill {
+        ui.painter().rect_filled(avail, 0.0, palette.letterbox);
+    }
     let cells = overview_cells(deck.slides.len(), deck.aspect.ratio(), avail);
     let mut clicked = None;
     for ((i, slide), rect) in deck.slides.iter().enumerate().zip(cells) {
@@ -131,6 +139,7 @@ pub fn overview_ui(
         let options = SlideOptions {
             footer: true,
             letterbox: false,
+            ..SlideOptions::default()
         };
         slide_ui_with(&mut child, deck, i, states.slide(slide), options);
         // On top of the thumbnail's widgets: a click anywhere picks the slide.

@@ -4,8 +4,9 @@
 
 use egui::{Color32, Rect, RichText, UiBuilder, vec2};
 
+use super::ink_draw::InkView;
 use super::pacing::{PaceReport, clock};
-use super::slide_view::{DeckState, SlideOptions, slide_ui_with};
+use super::slide_view::{DeckState, SlideOptions, SlideResponse, slide_ui_with};
 use super::theme::{self, Palette};
 use crate::deck::{Deck, Theme};
 
@@ -15,6 +16,28 @@ pub struct PresenterInfo<'a> {
     pub problems: &'a [String],
     /// Labels of the bookmarks set (key, label).
     pub bookmarks: &'a [(u8, String)],
+    /// Ink on the next slide. (The current slide's is painted by the caller, after it has
+    /// taken the pointer: see [`presenter_ui`]'s result.)
+    pub ink_next: InkView<'a>,
+    /// A drawing tool is on: the current slide takes the pointer for ink.
+    pub drawing: bool,
+    /// Paint the window's background. A window that is cleared to (nearly) that colour anyway
+    /// skips it: on a software rasteriser a window-sized rectangle costs tens of ms of CPU.
+    pub fill_window: bool,
+}
+
+impl<'a> PresenterInfo<'a> {
+    /// The timer, problems and bookmarks; no ink, not drawing, the window's background painted.
+    pub fn new(pace: PaceReport, problems: &'a [String], bookmarks: &'a [(u8, String)]) -> Self {
+        Self {
+            pace,
+            problems,
+            bookmarks,
+            ink_next: InkView::default(),
+            drawing: false,
+            fill_window: true,
+        }
+    }
 }
 
 /// In scene mode: the scene's control panel, which takes the place of the current slide.
@@ -27,11 +50,14 @@ pub fn presenter_ui(
     states: &mut DeckState,
     info: &PresenterInfo,
     scene: Option<SceneControls>,
-) {
+) -> Option<SlideResponse> {
+    let mut now_response = None;
     theme::install_fonts(ui.ctx());
     let palette = Palette::of(Theme::Dark);
     let full = ui.available_rect_before_wrap();
-    ui.painter().rect_filled(full, 0.0, palette.letterbox);
+    if info.fill_window {
+        ui.painter().rect_filled(full, 0.0, palette.letterbox);
+    }
     let pad = (full.width() / 80.0).max(8.0);
     let area = full.shrink(pad);
     let left_w = area.width() * 0.62;
@@ -81,13 +107,16 @@ pub fn presenter_ui(
         if let Some(slide) = deck.slides.get(index) {
             let mut child =
                 ui.new_child(UiBuilder::new().id_salt("presenter-now").max_rect(now_rect));
-            slide_ui_with(
+            now_response = Some(slide_ui_with(
                 &mut child,
                 deck,
                 index,
                 states.slide(slide),
-                SlideOptions::default(),
-            );
+                SlideOptions {
+                    drawing: info.drawing,
+                    ..SlideOptions::default()
+                },
+            ));
             let controls =
                 Rect::from_min_max(egui::pos2(left.min.x, now_rect.max.y + pad), left.max);
             let mut child = ui.new_child(
@@ -130,7 +159,10 @@ pub fn presenter_ui(
             deck,
             index + 1,
             states.slide(next),
-            SlideOptions::default(),
+            SlideOptions {
+                ink: info.ink_next,
+                ..SlideOptions::default()
+            },
         );
         // The next slide is a preview: a click must not reach its widgets.
         ui.interact(
@@ -254,6 +286,7 @@ pub fn presenter_ui(
         }
     });
     ui.advance_cursor_after_rect(full);
+    now_response
 }
 
 fn heading(ui: &egui::Ui, at: egui::Pos2, label: &str, size: f32, palette: &Palette) {

@@ -7,6 +7,7 @@ use std::collections::HashMap;
 use egui::{Align, Color32, Rect, Sense, Stroke, UiBuilder, Vec2, vec2};
 
 use super::blocks::{self, BlockCtx};
+use super::ink_draw::{InkView, paint_on_slide};
 use super::theme::{self, Look, Palette, fit_canvas, size};
 use crate::deck::{Deck, Layout, Slide};
 use crate::widgets::{ParamSnapshot, SlideWidget, WidgetSpec, params};
@@ -286,18 +287,31 @@ impl DeckState {
 
 /// How a slide is drawn besides its content.
 #[derive(Debug, Clone, Copy)]
-pub struct SlideOptions {
+pub struct SlideOptions<'a> {
     /// Page number and deck title at the bottom.
     pub footer: bool,
     /// Fill the space around the canvas (when the shapes differ) with the letterbox colour.
     pub letterbox: bool,
+    /// Paint the canvas's background colour. The window leaves it to the render pass's clear
+    /// colour instead ([`crate::app::LecternApp`]'s `clear_color`): on a software rasteriser
+    /// every window-sized rectangle costs tens of milliseconds of CPU.
+    pub background: bool,
+    /// Ink painted over the slide. (The live windows paint theirs after taking this frame's
+    /// pointer input instead, with [`paint_on_slide`], so a stroke shows the frame it is drawn.)
+    pub ink: InkView<'a>,
+    /// A tool is drawing: the canvas takes every click and drag (see [`SlideResponse::ink`]),
+    /// so neither the slide's widgets nor "click to advance" see them.
+    pub drawing: bool,
 }
 
-impl Default for SlideOptions {
+impl Default for SlideOptions<'_> {
     fn default() -> Self {
         Self {
             footer: true,
             letterbox: true,
+            background: true,
+            ink: InkView::default(),
+            drawing: false,
         }
     }
 }
@@ -310,6 +324,8 @@ pub struct SlideResponse {
     pub scale: f32,
     /// The slide's background: `clicked()` is a click that hit no widget.
     pub background: egui::Response,
+    /// While drawing: the whole canvas, on top of its widgets, sensing clicks and drags.
+    pub ink: Option<egui::Response>,
 }
 
 /// Draws slide `index` of `deck` into all the space `ui` has left, with default options.
@@ -342,9 +358,14 @@ pub fn slide_ui_with(
     let (canvas, scale) = fit_canvas(avail, deck.aspect.ratio());
     let look = Look { palette, scale };
     if options.letterbox {
-        ui.painter().rect_filled(avail, 0.0, palette.letterbox);
+        // Under a painted canvas the bars reach a point into it, so no seam shows at
+        // fractional edges; over the clear colour they stop at its edge.
+        let under = if options.background { 1.0 } else { 0.0 };
+        letterbox_ui(ui, avail, canvas, under, palette.letterbox);
     }
-    ui.painter().rect_filled(canvas, 0.0, palette.background);
+    if options.background {
+        ui.painter().rect_filled(canvas, 0.0, palette.background);
+    }
     // Registered before the content, so any widget drawn on top takes the click instead.
     let background = ui.interact(
         canvas,
@@ -358,6 +379,7 @@ pub fn slide_ui_with(
             canvas,
             scale,
             background,
+            ink: None,
         };
     };
     let inner = Rect::from_min_max(
@@ -394,11 +416,22 @@ pub fn slide_ui_with(
     }
     // Typeset the neighbours' formulas in the background, so paging finds them ready.
     blocks::prefetch_formulas(ui.ctx(), deck, index.saturating_sub(1)..index + 3, &look);
-    SlideResponse {
+    // Registered after the content, so it is on top: while drawing it takes the pointer.
+    let ink = options.drawing.then(|| {
+        ui.interact(
+            canvas,
+            ui.scope_id().with(("slide-ink", index)),
+            Sense::click_and_drag(),
+        )
+    });
+    let resp = SlideResponse {
         canvas,
         scale,
         background,
-    }
+        ink,
+    };
+    paint_on_slide(ui, &resp, deck.theme, &options.ink);
+    resp
 }
 
 fn content_slide_ui(ui: &mut egui::Ui, slide: &Slide, bctx: &BlockCtx, state: &mut SlideState) {
@@ -470,6 +503,31 @@ fn footer_ui(ui: &egui::Ui, deck: &Deck, index: usize, canvas: Rect, look: &Look
         font,
         look.palette.dim,
     );
+}
+
+/// Fills `avail` outside `canvas` with `color`: only the bars, never the area the canvas covers
+/// (painting it twice costs a window's worth of pixels on a software rasteriser). Each bar
+/// reaches `under` points into the canvas.
+fn letterbox_ui(ui: &egui::Ui, avail: Rect, canvas: Rect, under: f32, color: Color32) {
+    let bars = [
+        Rect::from_min_max(avail.min, egui::pos2(avail.max.x, canvas.min.y + under)),
+        Rect::from_min_max(egui::pos2(avail.min.x, canvas.max.y - under), avail.max),
+        Rect::from_min_max(
+            egui::pos2(avail.min.x, canvas.min.y),
+            egui::pos2(canvas.min.x + under, canvas.max.y),
+        ),
+        Rect::from_min_max(
+            egui::pos2(canvas.max.x - under, canvas.min.y),
+            egui::pos2(avail.max.x, canvas.max.y),
+        ),
+    ];
+    for bar in bars {
+        // A bar thinner than the overlap is only the overlap: the canvas fills its side.
+        if bar.width() > under + 0.01 && bar.height() > under + 0.01 {
+            // (with `under` = 0: any bar with some area)
+            ui.painter().rect_filled(bar, 0.0, color);
+        }
+    }
 }
 
 /// A slide-sized black rectangle (the `B` key).

@@ -1,6 +1,7 @@
 //! Windows and screens: where the audience window goes on the first frame, and the presenter
 //! view (in its own window, or in this one with `P`).
 
+use super::ink_draw::paint_on_slide;
 use super::lectern_app::{LecternApp, Mode, scene_panel_ui};
 use super::presenter::{PresenterInfo, SceneControls, presenter_ui};
 use super::screens::{MonitorRect, ScreenPlan};
@@ -52,6 +53,7 @@ impl LecternApp {
             .error()
             .map(|e| e.to_string())
             .into_iter()
+            .chain(self.ink.problem().map(|e| format!("ink ignored: {e}")))
             .collect();
         if let Some(slide) = deck.slides.get(index) {
             problems.extend(self.states.slide(slide).problems().iter().cloned());
@@ -68,15 +70,37 @@ impl LecternApp {
             }
         }
         marks.sort();
+        let now = ui.input(|i| i.time);
+        let key_of = |i: usize| deck.slides.get(i).map_or("", |s| s.key());
+        let drawing = self.ink.is_drawing() && self.mode == Mode::Slides;
         let info = PresenterInfo {
             pace: self.pacing.report(),
             problems: &problems,
             bookmarks: &marks,
+            ink_next: self.ink.view(key_of(index + 1), now),
+            drawing,
+            fill_window: !self.window_clear,
         };
         // In scene mode the scene's panel replaces the slide and its controls.
-        let mut scene_panel = |ui: &mut egui::Ui| scene_panel_ui(&mut self.scene, ui);
+        let frame_ms = self.frames.mean_ms();
+        let mut scene_panel = |ui: &mut egui::Ui| scene_panel_ui(&mut self.scene, frame_ms, ui);
         let scene: Option<SceneControls> = (self.mode == Mode::Scene).then_some(&mut scene_panel);
-        presenter_ui(ui, deck, index, &mut self.states, &info, scene);
+        let resp = presenter_ui(ui, deck, index, &mut self.states, &info, scene);
+        // Drawing on the presenter's current slide; the audience window, drawn later in this
+        // same pass, shows the new ink at once.
+        let Some(resp) = resp else {
+            return;
+        };
+        let ctx = ui.ctx().clone();
+        let said = if drawing {
+            self.ink.input_ui(&ctx, key_of(index), &resp)
+        } else {
+            None
+        };
+        paint_on_slide(ui, &resp, deck.theme, &self.ink.view(key_of(index), now));
+        if let Some(msg) = said {
+            self.say(&ctx, msg);
+        }
     }
 
     pub(super) fn show_presenter_window(&mut self, ctx: &egui::Context) {

@@ -121,6 +121,10 @@ pub fn check_paths(paths: &[PathBuf], defaults: bool) -> Report {
             check_file(&file, &mut decks, &mut report);
         }
     }
+    // A fault reached twice (an include-only shader named alone and through the shader that
+    // includes it, one shader in two pipelines) is printed once.
+    let mut seen = std::collections::HashSet::new();
+    report.problems.retain(|d| seen.insert(d.to_string()));
     report
 }
 
@@ -153,7 +157,7 @@ pub fn check_file(file: &Path, decks: &mut DeckChecker, report: &mut Report) {
     report.counts[kind as usize] += 1;
     let problems = match kind {
         // a shader is read with its includes
-        Kind::Shader => crate::render::shaders::check_file(file),
+        Kind::Shader => crate::render::check_shader_file(file),
         _ => match std::fs::read_to_string(file) {
             Ok(text) => check_text(kind, &text, file, decks, report),
             Err(e) => vec![Diagnostic::whole_file(file, format!("cannot read: {e}"))],
@@ -187,7 +191,7 @@ pub fn check_text(
             checked.problems
         }
         Kind::Scene => first(crate::scene::parse_scene(text, file).map(|_| ())),
-        Kind::Shader => crate::render::shaders::check_file(file),
+        Kind::Shader => crate::render::check_shader_file(file),
         Kind::Problem => first(crate::ode::problem::Problem::parse(text, file).map(|_| ())),
         Kind::Tableau => first(crate::ode::Tableau::parse(text, file).map(|_| ())),
     }
@@ -210,6 +214,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     for d in &report.problems {
         println!("{d}");
     }
+    if let Some(note) = crate::render::pipeline_check_skipped() {
+        println!("{note}");
+    }
     println!("{}", report.summary());
     if report.problems.is_empty() {
         Ok(())
@@ -221,6 +228,26 @@ pub fn run(args: Args) -> anyhow::Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_fault_reached_twice_is_reported_once() {
+        let dir = tempfile::tempdir().unwrap();
+        let shaders = dir.path().join("shaders");
+        std::fs::create_dir_all(&shaders).unwrap();
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("shaders");
+        for entry in std::fs::read_dir(&root).unwrap() {
+            let from = entry.unwrap().path();
+            std::fs::copy(&from, shaders.join(from.file_name().unwrap())).unwrap();
+        }
+        let brdf = shaders.join("brdf.wgsl");
+        let text = std::fs::read_to_string(&brdf).unwrap();
+        std::fs::write(&brdf, text.replacen("fn ", "fn fn ", 1)).unwrap();
+        let report = check_paths(&[brdf.clone(), shaders.join("pbr.wgsl")], false);
+        let at_brdf: Vec<_> = (report.problems.iter())
+            .filter(|d| d.file == brdf)
+            .collect();
+        assert_eq!(at_brdf.len(), 1, "{:?}", report.problems);
+    }
 
     #[test]
     fn kinds_by_folder_and_companions_skipped() {

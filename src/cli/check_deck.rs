@@ -19,7 +19,7 @@ use crate::deck::{Block, Deck, IMAGE_WIDTH_RANGE, parse_deck_file};
 use crate::diag::Diagnostic;
 use crate::math::{MathError, MathSyntax};
 use crate::ron_tree::{self, Node};
-use crate::widgets::WidgetSpec;
+use crate::widgets::{ParamValue, WidgetSpec, WriteTo};
 
 /// Formulas are typeset at this many pixels per em (as `math::deck::check_formulas` does).
 const CHECK_EM_PX: f32 = 40.0;
@@ -192,6 +192,46 @@ impl Walk<'_> {
             }
             _ => {}
         }
+        self.slider_ranges(spec, at);
+    }
+
+    /// A value the deck sets outside the range of its presenter slider: the widget would clamp
+    /// it silently when drawing, so the lecturer is told instead. The ranges are the widgets'
+    /// own (`SlideWidget::params`), the ones the sliders and the clamping use.
+    fn slider_ranges(&mut self, spec: &WidgetSpec, at: &str) {
+        let mut widget = spec.instantiate_in(Some(self.file));
+        let mut faults = Vec::new();
+        for p in widget.params() {
+            // ODE parameters carry their range in the problem, checked with it
+            if p.write != WriteTo::Spec {
+                continue;
+            }
+            let (value, lo, hi) = match p.value {
+                ParamValue::F64 {
+                    value, min, max, ..
+                } => (*value, min, max),
+                ParamValue::Usize { value, min, max } => (*value as f64, min as f64, max as f64),
+                ParamValue::Bool(_) => continue,
+            };
+            if !(lo..=hi).contains(&value) {
+                faults.push((
+                    p.id.clone(),
+                    format!(
+                        "{} = {value} is outside {lo}..={hi}, the range its presenter slider allows",
+                        p.id
+                    ),
+                ));
+            }
+        }
+        for (id, message) in faults {
+            let path = format!("{at}.{id}");
+            let path = if self.node(&path).is_some() {
+                path
+            } else {
+                at.to_owned()
+            };
+            self.at(&path, message);
+        }
     }
 
     /// The simulation loop's body must exist in its scene (the scene file itself is checked
@@ -306,6 +346,22 @@ mod tests {
         assert_eq!(at, [(5, 38), (6, 36)], "{p:?}");
         assert!(p[0].message.contains("no such file"), "{}", p[0]);
         assert!(p[1].message.contains("body 9"), "{}", p[1]);
+    }
+
+    #[test]
+    fn values_outside_their_sliders_range_at_the_value() {
+        let p = check(&deck(concat!(
+            "      Widget(SlopeField((ode: File(\"problems/forced.ron\"), h: 5.0, t_end: 5.0))),\n",
+            "      Widget(ParallelTransport((fish: 400))),",
+        )));
+        let at: Vec<(usize, usize)> = p.iter().map(|d| (d.line, d.col)).collect();
+        assert_eq!(at, [(5, 63), (6, 39)], "{p:?}");
+        assert!(
+            p[0].message.contains("h = 5 is outside 0.01..=2"),
+            "{}",
+            p[0]
+        );
+        assert!(p[1].message.contains("fish = 400"), "{}", p[1]);
     }
 
     #[test]

@@ -7,9 +7,11 @@ use std::path::PathBuf;
 use anyhow::Context as _;
 
 use super::export_pdf::HandoutWriter;
+use crate::app::ink_draw::InkView;
 use crate::app::tweak_file::TweakFile;
-use crate::app::{OffscreenRenderer, SlideState};
-use crate::deck::load_deck;
+use crate::app::{OffscreenRenderer, SlideOptions, SlideState};
+use crate::deck::ink::Ink;
+use crate::deck::{InkFile, load_deck};
 
 /// Render every slide to PNG and/or a PDF handout, headless (any GPU, or Mesa's software
 /// adapter).
@@ -43,6 +45,10 @@ pub struct Args {
     /// listed).
     #[arg(long)]
     pub keep_going: bool,
+    /// Leave out the ink drawn while presenting (`DECK.ink.ron` beside the deck, drawn by
+    /// default so the handout shows what the class saw).
+    #[arg(long)]
+    pub no_ink: bool,
 }
 
 /// The default image size for a deck: 1920 pixels wide, as tall as its aspect asks.
@@ -79,6 +85,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     for key in tweaks.unknown_slides(&deck) {
         eprintln!("lectern: warning: the tweaks are for slide {key:?}, which the deck lacks");
     }
+    let ink = if args.no_ink {
+        Ink::default()
+    } else {
+        load_ink(&path, &deck)
+    };
     // A still image cannot wait for a background study: work-precision runs on this thread
     // (timings then from a fixed cost per f-evaluation, so exports are reproducible).
     crate::widgets::work_precision::DETERMINISTIC.store(true, std::sync::atomic::Ordering::Relaxed);
@@ -105,7 +116,15 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         for problem in tweaks.apply(&deck, index, &mut state) {
             eprintln!("lectern: warning: {problem}");
         }
-        let image = renderer.render_slide(&deck, index, &mut state, size)?;
+        let options = SlideOptions {
+            ink: InkView {
+                strokes: ink.strokes(deck.slides[index].key()),
+                ..InkView::default()
+            },
+            ..SlideOptions::default()
+        };
+        let image = renderer.render_slide_with(&deck, index, &mut state, size, options)?;
+        // e.g. a formula stopped at its time budget: the slide shows its source instead
         for problem in state.problems() {
             failures.push(format!(
                 "{}: slide {} ({:?}): {problem}",
@@ -160,4 +179,18 @@ fn report_failures(failures: &[String], keep_going: bool) -> anyhow::Result<()> 
              `lectern check` shows where, `--keep-going` exits 0)"
         )),
     }
+}
+
+/// The ink beside the deck; a damaged file is a warning and no ink, never a failed export.
+fn load_ink(deck_path: &std::path::Path, deck: &crate::deck::Deck) -> Ink {
+    let file = InkFile::for_deck(deck_path);
+    if let Some(problem) = file.problem() {
+        eprintln!("lectern: warning: ink left out: {problem}");
+    }
+    for key in file.ink().slides.keys() {
+        if deck.find(key).is_none() {
+            eprintln!("lectern: warning: ink for slide {key:?}, which the deck lacks");
+        }
+    }
+    file.ink().clone()
 }

@@ -6,6 +6,7 @@ use std::sync::{Arc, Mutex};
 use anyhow::Context as _;
 
 use crate::app::LecternApp;
+use crate::app::keys;
 use crate::app::screens::{MonitorRect, ScreenChoice, ScreenPlan, plan_screens};
 use crate::deck::DeckSession;
 use winit::application::ApplicationHandler;
@@ -35,6 +36,10 @@ pub struct Args {
     /// Rehearsal: record the actual time per slide in DECK.timings.ron beside the deck.
     #[arg(long)]
     pub rehearse: bool,
+    /// Append `mode,frame_ms` to FILE for every drawn frame (`slides` or `scene`; wall
+    /// milliseconds since the previous drawn frame), to measure the live app.
+    #[arg(long, value_name = "FILE")]
+    pub frame_stats: Option<PathBuf>,
 }
 
 /// The bundled lecture: `slides/lecture.ron` under the current folder, else in the source tree
@@ -58,6 +63,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     let title = format!("lectern — {}", session.deck().title);
     let rehearsal = args.rehearse.then(|| path.with_extension("timings.ron"));
+    let frame_stats = args.frame_stats;
     let choice = if args.single_screen {
         ScreenChoice::Single
     } else if args.presenter {
@@ -99,6 +105,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             crate::math::never_wait(&cc.egui_ctx);
             app.set_screens(monitors, plan);
             app.rehearsal_file = rehearsal;
+            if let Some(file) = &frame_stats {
+                app.set_frame_stats(file)
+                    .map_err(|e| format!("cannot write {}: {e}", file.display()))?;
+            }
             Ok(Box::new(app))
         }),
         &event_loop,
@@ -145,7 +155,29 @@ fn describe(monitors: &[MonitorRect], plan: &ScreenPlan) -> String {
     format!("monitors: [{}]; {plan}", list.join(", "))
 }
 
+/// The egui key for the keys whose release the window may drop (the slide keys).
+fn egui_key(key: &winit::keyboard::Key) -> Option<egui::Key> {
+    use winit::keyboard::{Key, NamedKey};
+    let Key::Named(named) = key else {
+        return None;
+    };
+    Some(match named {
+        NamedKey::ArrowLeft => egui::Key::ArrowLeft,
+        NamedKey::ArrowRight => egui::Key::ArrowRight,
+        NamedKey::ArrowUp => egui::Key::ArrowUp,
+        NamedKey::ArrowDown => egui::Key::ArrowDown,
+        NamedKey::PageUp => egui::Key::PageUp,
+        NamedKey::PageDown => egui::Key::PageDown,
+        NamedKey::Home => egui::Key::Home,
+        NamedKey::End => egui::Key::End,
+        NamedKey::Space => egui::Key::Space,
+        NamedKey::Tab => egui::Key::Tab,
+        _ => return None,
+    })
+}
+
 /// Forwards everything to eframe; on the first `resumed` it first records the monitors.
+/// Releases of the slide keys are dropped on the way (see [`egui_key`]).
 struct MonitorProbe<'a> {
     inner: eframe::EframeWinitApplication<'a>,
     monitors: Arc<Mutex<Vec<MonitorRect>>>,
@@ -179,6 +211,14 @@ impl ApplicationHandler<eframe::UserEvent> for MonitorProbe<'_> {
     }
 
     fn window_event(&mut self, el: &ActiveEventLoop, id: WindowId, event: WindowEvent) {
+        if let WindowEvent::KeyboardInput { event: key, .. } = &event
+            && key.state == winit::event::ElementState::Released
+            && egui_key(&key.logical_key).is_some_and(keys::release_is_ignored)
+        {
+            // Each event egui sees costs two more frames; a slide key's release changes
+            // nothing (see `keys::release_is_ignored`).
+            return;
+        }
         self.inner.window_event(el, id, event);
     }
 

@@ -2,6 +2,8 @@
 //! navigation state.
 
 pub mod files;
+pub mod ink;
+mod ink_file;
 mod load;
 mod model;
 pub mod nav;
@@ -9,6 +11,7 @@ mod session;
 pub mod widgets;
 pub mod write_back;
 
+pub use ink_file::InkFile;
 pub use load::{load_deck, parse_deck, parse_deck_file};
 pub use model::{
     Aspect, Block, BookmarkDecl, Deck, IMAGE_WIDTH_RANGE, Layout, Slide, Theme, WidgetProblem,

@@ -64,8 +64,18 @@ impl DeckSession {
     /// Applies whatever the watcher has seen since the last call; never blocks. Returns the
     /// outcome for the deck file, or `None` if nothing touched it.
     pub fn pump(&mut self) -> Option<Reloaded> {
-        let changed = self.watcher.as_ref()?.poll();
-        self.apply_changed(&changed)
+        self.pump_changes().1
+    }
+
+    /// [`Self::pump`], also handing back the changed paths (other files beside the deck, such
+    /// as its ink, reload from the same watcher).
+    pub fn pump_changes(&mut self) -> (Vec<PathBuf>, Option<Reloaded>) {
+        let Some(watcher) = self.watcher.as_ref() else {
+            return (Vec::new(), None);
+        };
+        let changed = watcher.poll();
+        let outcome = self.apply_changed(&changed);
+        (changed, outcome)
     }
 
     /// Waits up to `timeout` for the watcher to report changes, then applies them (for tests

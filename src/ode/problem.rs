@@ -287,6 +287,15 @@ impl ProblemDef {
                     format!("the range of `{k}` must be two finite numbers, low < high"),
                 ));
             }
+            // the slider could not show it, and would clamp it on the first touch
+            if let Some(v) = self.params.get(k)
+                && !(lo..=hi).contains(&v)
+            {
+                return Err(err(
+                    DefPos::Entry("params", k.clone()),
+                    format!("parameter `{k}` = {v} is outside its range ({lo}, {hi})"),
+                ));
+            }
         }
         let params: Vec<(String, f64)> = self.params.clone().into_iter().collect();
         let mut inputs = self.vars.clone();
@@ -527,6 +536,15 @@ mod tests {
         assert!(d.message.contains("empty"));
         let d = Problem::parse(&OSC.replace("\"v\"]", "\"x\"]"), "p.ron").unwrap_err();
         assert!(d.message.contains("twice"), "{d}");
+    }
+
+    #[test]
+    fn a_parameter_outside_its_declared_range_at_its_value() {
+        let text = OSC.replace("params: {", "ranges: {\"w\": (0.0, 1.0)},\n    params: {");
+        let d = Problem::parse(&text, "p.ron").unwrap_err();
+        assert!(d.message.contains("outside its range (0, 1)"), "{d}");
+        let value_at = text.find("\"w\": 2").unwrap() + "\"w\": ".len();
+        assert_eq!((d.line, d.col), ron_tree::line_col(&text, value_at), "{d}");
     }
 
     #[test]

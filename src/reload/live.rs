@@ -85,6 +85,12 @@ impl<T> LiveFile<T> {
         self.holder.generation()
     }
 
+    /// Tells the holder that the app itself just wrote `text` to the file (files the app edits,
+    /// like ink): the watcher's echo of that write is then not a reload.
+    pub fn note_written(&mut self, text: String) {
+        self.last_text = Some(text);
+    }
+
     /// Whether any of `changed` (as reported by a [`super::DirWatcher`]) is this file.
     pub fn is_affected_by(&self, changed: &[PathBuf]) -> bool {
         changed.iter().any(|p| absolute(p) == self.abs_path)
@@ -174,15 +180,21 @@ mod tests {
         assert_eq!(live.value(), Some(&1));
         std::fs::write(&path, "x").unwrap();
         assert!(matches!(
-            live.on_changes(&[path.clone()]),
+            live.on_changes(std::slice::from_ref(&path)),
             Reloaded::Failed(_)
         ));
         assert_eq!(live.value(), Some(&1));
         std::fs::write(&path, "").unwrap();
-        assert_eq!(live.on_changes(&[path.clone()]), Reloaded::Waiting);
+        assert_eq!(
+            live.on_changes(std::slice::from_ref(&path)),
+            Reloaded::Waiting
+        );
         assert!(live.error().is_some(), "waiting keeps the last error");
         std::fs::write(&path, "2").unwrap();
-        assert_eq!(live.on_changes(&[path.clone()]), Reloaded::Updated);
+        assert_eq!(
+            live.on_changes(std::slice::from_ref(&path)),
+            Reloaded::Updated
+        );
         assert_eq!(live.value(), Some(&2));
         assert!(live.error().is_none());
         let other = dir.path().join("other.txt");

@@ -1,12 +1,15 @@
-//! The per-frame uniform block (`Globals` in shaders/common.wgsl, same layout) and the teaching
-//! toggles that feed it.
+//! The per-frame uniform block (`Globals` in shaders/common.wgsl, same layout: a test compares
+//! the offsets naga computes with Rust's), its bind groups' layouts, and the teaching toggles
+//! that feed it.
 
 use bytemuck::{Pod, Zeroable};
-use glam::{Mat4, Vec3};
+use glam::Vec3;
 
 use crate::scene::model::MAX_WAVES;
 use crate::scene::snapshot::{FAR_M, NEAR_M};
 use crate::scene::{FrameSnapshot, Scene};
+
+use super::pipeline::{FLOAT, Layout, sampler, texture, uniform};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum DebugView {
@@ -20,12 +23,13 @@ pub enum DebugView {
 impl DebugView {
     pub const ALL: [DebugView; 4] = [Self::None, Self::ShadowMap, Self::Normals, Self::EnvCube];
 
-    pub fn code(self) -> f32 {
+    /// `DEBUG_*` in common.wgsl.
+    pub fn code(self) -> u32 {
         match self {
-            Self::None => 0.0,
-            Self::ShadowMap => 1.0,
-            Self::Normals => 2.0,
-            Self::EnvCube => 3.0,
+            Self::None => 0,
+            Self::ShadowMap => 1,
+            Self::Normals => 2,
+            Self::EnvCube => 3,
         }
     }
 
@@ -50,6 +54,12 @@ pub struct RenderSettings {
     pub fresnel: bool,
     pub debug_view: DebugView,
     pub exposure: f32,
+    /// The scene is rendered at this fraction of the output's size in each direction and
+    /// scaled up by the tone mapping pass (dynamic resolution); 1 = full size.
+    pub render_scale: f32,
+    /// Fish level of detail: 1 = the full mesh up to the default distances, smaller values
+    /// switch to the coarser meshes nearer the camera (see [`super::fish::Lod`]).
+    pub fish_detail: f32,
 }
 
 impl Default for RenderSettings {
@@ -62,6 +72,8 @@ impl Default for RenderSettings {
             fresnel: true,
             debug_view: DebugView::None,
             exposure: 1.0,
+            render_scale: 1.0,
+            fish_detail: 1.0,
         }
     }
 }
@@ -69,8 +81,16 @@ impl Default for RenderSettings {
 #[repr(C)]
 #[derive(Debug, Clone, Copy, Pod, Zeroable)]
 pub struct WaveGpu {
-    pub dir_k_amp: [f32; 4],
-    pub omega_qka: [f32; 4],
+    /// unit direction of travel (xz)
+    pub direction: [f32; 2],
+    /// k = 2π / wavelength, 1/m
+    pub wavenumber_per_m: f32,
+    pub amplitude_m: f32,
+    /// ω = k · speed, rad/s
+    pub angular_freq_per_sec: f32,
+    /// Q k A = steepness / N: how far crests lean (dimensionless)
+    pub steepness_qka: f32,
+    pub _pad: [f32; 2],
 }
 
 #[repr(C)]
@@ -79,103 +99,218 @@ pub struct Globals {
     pub clip_from_world: [[f32; 4]; 4],
     pub world_from_clip: [[f32; 4]; 4],
     pub light_clip_from_world: [[f32; 4]; 4],
-    pub camera_pos_time: [f32; 4],
-    pub sun_dir_intensity: [f32; 4],
-    pub sun_color: [f32; 4],
-    pub water: [f32; 4],
-    pub absorption: [f32; 4],
-    pub scatter: [f32; 4],
-    pub toggles: [f32; 4],
-    pub toggles2: [f32; 4],
+    pub eye_m: [f32; 3],
+    pub time_secs: f32,
+    /// unit, towards the sun
+    pub sun_dir: [f32; 3],
+    pub sun_intensity: f32,
+    pub sun_color: [f32; 3],
+    pub exposure: f32,
+    pub absorption_per_m: [f32; 3],
+    /// the camera's far plane, metres
+    pub far_m: f32,
+    pub scatter_color: [f32; 3],
+    /// the camera's near plane, metres
+    pub near_m: f32,
+    pub water_level_m: f32,
+    pub wave_count: u32,
+    pub env_mip_count: f32,
+    pub debug_view: u32,
+    /// size of the HDR target being drawn, pixels
+    pub viewport_size_px: [f32; 2],
+    pub env_map_on: u32,
+    pub normal_maps_on: u32,
+    pub shadows_on: u32,
+    pub cook_torrance_on: u32,
+    pub fresnel_on: u32,
+    pub _pad: u32,
     pub waves: [WaveGpu; MAX_WAVES],
 }
 
-fn flag(b: bool) -> f32 {
-    if b { 1.0 } else { 0.0 }
+/// Group 0 of the lit passes: the globals, the environment cube and the shadow map.
+pub fn frame_layout(device: &wgpu::Device) -> Layout {
+    use wgpu::{SamplerBindingType as S, TextureSampleType as T, TextureViewDimension as D};
+    let vf = wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT;
+    Layout::new(
+        device,
+        "frame",
+        &[
+            uniform::<Globals>(0, vf),
+            texture(1, D::Cube, FLOAT),
+            sampler(2, S::Filtering),
+            texture(3, D::D2, T::Depth),
+            sampler(4, S::Comparison),
+        ],
+    )
 }
 
-/// The sun's orthographic shadow camera, framing the lagoon's centre where fish, rocks and
-/// floating bodies are.
-pub fn light_clip_from_world(scene: &Scene) -> Mat4 {
-    let sun = Vec3::from(scene.sun.direction).normalize();
-    let centre = Vec3::new(0.0, scene.water.level - 0.5 * scene.seabed_depth(), 0.0);
-    let half_extent = 9.0;
-    let eye = centre + sun * 30.0;
-    let up = if sun.y.abs() > 0.99 { Vec3::Z } else { Vec3::Y };
-    glam::camera::rh::proj::directx::orthographic(
-        -half_extent,
-        half_extent,
-        -half_extent,
-        half_extent,
-        1.0,
-        60.0,
-    ) * glam::camera::rh::view::look_at_mat4(eye, centre, up)
+/// Group 0 of the shadow passes: the globals only (the shadow map is their target).
+pub fn shadow_frame_layout(device: &wgpu::Device) -> Layout {
+    let vf = wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT;
+    Layout::new(device, "shadow frame", &[uniform::<Globals>(0, vf)])
 }
 
-pub fn globals(
-    scene: &Scene,
-    snap: &FrameSnapshot,
-    settings: &RenderSettings,
-    size: (u32, u32),
-    env_mips: u32,
-) -> Globals {
-    let aspect = size.0 as f32 / size.1.max(1) as f32;
-    let clip_from_world = snap.camera.clip_from_view(aspect) * snap.camera.view_from_world();
-    let sun = Vec3::from(scene.sun.direction).normalize();
+fn on(b: bool) -> u32 {
+    u32::from(b)
+}
+
+pub fn waves_gpu(scene: &Scene) -> [WaveGpu; MAX_WAVES] {
     let n_waves = scene.water.waves.len().min(MAX_WAVES);
     let mut waves = [WaveGpu::zeroed(); MAX_WAVES];
     for (slot, w) in waves.iter_mut().zip(&scene.water.waves) {
         let d = glam::Vec2::from(w.direction).normalize_or(glam::Vec2::X);
         let k = std::f32::consts::TAU / w.wavelength;
         *slot = WaveGpu {
-            dir_k_amp: [d.x, d.y, k, w.amplitude],
+            direction: [d.x, d.y],
+            wavenumber_per_m: k,
+            amplitude_m: w.amplitude,
+            angular_freq_per_sec: k * w.speed,
             // a wave of zero amplitude moves nothing (as in crate::waves)
-            omega_qka: [
-                k * w.speed,
-                if w.amplitude == 0.0 {
-                    0.0
-                } else {
-                    w.steepness / n_waves.max(1) as f32
-                },
-                0.0,
-                0.0,
-            ],
+            steepness_qka: if w.amplitude == 0.0 {
+                0.0
+            } else {
+                w.steepness / n_waves.max(1) as f32
+            },
+            _pad: [0.0; 2],
         };
     }
-    let e = snap.camera.eye;
+    waves
+}
+
+/// The uniforms of one frame drawn at `size_px` (the HDR target's size).
+pub fn globals(
+    scene: &Scene,
+    snap: &FrameSnapshot,
+    settings: &RenderSettings,
+    size_px: (u32, u32),
+    env_mips: u32,
+) -> Globals {
+    let aspect = size_px.0 as f32 / size_px.1.max(1) as f32;
+    let clip_from_world = snap.camera.clip_from_view(aspect) * snap.camera.view_from_world();
+    let sun = Vec3::from(scene.sun.direction).normalize();
     let w = &scene.water;
     Globals {
         clip_from_world: clip_from_world.to_cols_array_2d(),
         world_from_clip: clip_from_world.inverse().to_cols_array_2d(),
-        light_clip_from_world: light_clip_from_world(scene).to_cols_array_2d(),
-        camera_pos_time: [e.x, e.y, e.z, snap.time_secs],
-        sun_dir_intensity: [sun.x, sun.y, sun.z, scene.sun.intensity],
-        sun_color: [
-            scene.sun.color[0],
-            scene.sun.color[1],
-            scene.sun.color[2],
-            0.0,
-        ],
-        water: [w.level, n_waves as f32, env_mips as f32, settings.exposure],
-        absorption: [w.absorption[0], w.absorption[1], w.absorption[2], FAR_M],
-        scatter: [
-            w.scatter_color[0],
-            w.scatter_color[1],
-            w.scatter_color[2],
-            NEAR_M,
-        ],
-        toggles: [
-            flag(settings.env_map),
-            flag(settings.normal_maps),
-            flag(settings.shadows),
-            flag(settings.brdf),
-        ],
-        toggles2: [
-            flag(settings.fresnel),
-            settings.debug_view.code(),
-            size.0 as f32,
-            size.1 as f32,
-        ],
-        waves,
+        light_clip_from_world: super::shadow::light_clip_from_world(scene).to_cols_array_2d(),
+        eye_m: snap.camera.eye.to_array(),
+        time_secs: snap.time_secs,
+        sun_dir: sun.to_array(),
+        sun_intensity: scene.sun.intensity,
+        sun_color: scene.sun.color,
+        exposure: settings.exposure,
+        absorption_per_m: w.absorption,
+        far_m: FAR_M,
+        scatter_color: w.scatter_color,
+        near_m: NEAR_M,
+        water_level_m: w.level,
+        wave_count: w.waves.len().min(MAX_WAVES) as u32,
+        env_mip_count: env_mips as f32,
+        debug_view: settings.debug_view.code(),
+        viewport_size_px: [size_px.0 as f32, size_px.1 as f32],
+        env_map_on: on(settings.env_map),
+        normal_maps_on: on(settings.normal_maps),
+        shadows_on: on(settings.shadows),
+        cook_torrance_on: on(settings.brdf),
+        fresnel_on: on(settings.fresnel),
+        _pad: 0,
+        waves: waves_gpu(scene),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Rust's `Globals` and WGSL's must agree field by field (a mismatch shifts every value
+    /// after it, and nothing else would notice).
+    #[test]
+    fn globals_match_common_wgsl_field_by_field() {
+        let text = std::fs::read_to_string("shaders/common.wgsl").unwrap();
+        // common.wgsl alone declares the bindings; a stub entry point makes it a module
+        let module = naga::front::wgsl::parse_str(&text).unwrap();
+        let (_, ty) = module
+            .types
+            .iter()
+            .find(|(_, t)| t.name.as_deref() == Some("Globals"))
+            .expect("struct Globals");
+        let naga::TypeInner::Struct { members, span } = &ty.inner else {
+            panic!("Globals is a struct");
+        };
+        assert_eq!(*span as usize, std::mem::size_of::<Globals>(), "size");
+        let rust: &[(&str, usize)] = &[
+            (
+                "clip_from_world",
+                std::mem::offset_of!(Globals, clip_from_world),
+            ),
+            (
+                "world_from_clip",
+                std::mem::offset_of!(Globals, world_from_clip),
+            ),
+            (
+                "light_clip_from_world",
+                std::mem::offset_of!(Globals, light_clip_from_world),
+            ),
+            ("eye_m", std::mem::offset_of!(Globals, eye_m)),
+            ("time_secs", std::mem::offset_of!(Globals, time_secs)),
+            ("sun_dir", std::mem::offset_of!(Globals, sun_dir)),
+            (
+                "sun_intensity",
+                std::mem::offset_of!(Globals, sun_intensity),
+            ),
+            ("sun_color", std::mem::offset_of!(Globals, sun_color)),
+            ("exposure", std::mem::offset_of!(Globals, exposure)),
+            (
+                "absorption_per_m",
+                std::mem::offset_of!(Globals, absorption_per_m),
+            ),
+            ("far_m", std::mem::offset_of!(Globals, far_m)),
+            (
+                "scatter_color",
+                std::mem::offset_of!(Globals, scatter_color),
+            ),
+            ("near_m", std::mem::offset_of!(Globals, near_m)),
+            (
+                "water_level_m",
+                std::mem::offset_of!(Globals, water_level_m),
+            ),
+            ("wave_count", std::mem::offset_of!(Globals, wave_count)),
+            (
+                "env_mip_count",
+                std::mem::offset_of!(Globals, env_mip_count),
+            ),
+            ("debug_view", std::mem::offset_of!(Globals, debug_view)),
+            (
+                "viewport_size_px",
+                std::mem::offset_of!(Globals, viewport_size_px),
+            ),
+            ("env_map_on", std::mem::offset_of!(Globals, env_map_on)),
+            (
+                "normal_maps_on",
+                std::mem::offset_of!(Globals, normal_maps_on),
+            ),
+            ("shadows_on", std::mem::offset_of!(Globals, shadows_on)),
+            (
+                "cook_torrance_on",
+                std::mem::offset_of!(Globals, cook_torrance_on),
+            ),
+            ("fresnel_on", std::mem::offset_of!(Globals, fresnel_on)),
+            ("_pad", std::mem::offset_of!(Globals, _pad)),
+            ("waves", std::mem::offset_of!(Globals, waves)),
+        ];
+        let wgsl: Vec<(&str, usize)> = members
+            .iter()
+            .map(|m| (m.name.as_deref().unwrap_or("?"), m.offset as usize))
+            .collect();
+        assert_eq!(wgsl, rust);
+        let (_, wave) = module
+            .types
+            .iter()
+            .find(|(_, t)| t.name.as_deref() == Some("Wave"))
+            .expect("struct Wave");
+        let naga::TypeInner::Struct { span, .. } = &wave.inner else {
+            panic!("Wave is a struct");
+        };
+        assert_eq!(*span as usize, std::mem::size_of::<WaveGpu>());
     }
 }

@@ -6,7 +6,7 @@ use std::time::{Duration, Instant};
 
 use anyhow::{Context, Result};
 
-use crate::scene::{FrameSnapshot, Scene, SceneSim};
+use crate::scene::{FrameSnapshot, Quality, Scene, SceneSim};
 
 use super::frame::RenderSettings;
 use super::gpu::{self, Gpu};
@@ -26,11 +26,20 @@ impl Headless {
     pub fn new(scene: Scene, shader_dir: &Path) -> Result<Self> {
         let gpu = Gpu::headless()?;
         let renderer = Renderer::new(&gpu.device, &gpu.queue, shader_dir, &scene, OUTPUT_FORMAT)?;
+        // headless frames are drawn at full quality unless the scene fixes it
+        let mut settings = RenderSettings::default();
+        if let Quality::Fixed {
+            render_scale,
+            fish_detail,
+        } = scene.quality
+        {
+            (settings.render_scale, settings.fish_detail) = (render_scale, fish_detail);
+        }
         Ok(Self {
             gpu,
             renderer,
             sim: SceneSim::new(scene),
-            settings: RenderSettings::default(),
+            settings,
             target: None,
         })
     }

@@ -128,9 +128,21 @@ impl GpuMesh {
     }
 
     pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>, instances: u32) {
+        self.draw_instances(pass, 0..instances);
+    }
+
+    /// Draws the instances `range` of the instance buffer bound at slot 1 (if any).
+    pub fn draw_instances(&self, pass: &mut wgpu::RenderPass<'_>, range: std::ops::Range<u32>) {
+        if range.is_empty() {
+            return;
+        }
         pass.set_vertex_buffer(0, self.vertex_buffer.slice(..));
         pass.set_index_buffer(self.index_buffer.slice(..), wgpu::IndexFormat::Uint32);
-        pass.draw_indexed(0..self.index_count, 0, 0..instances);
+        pass.draw_indexed(0..self.index_count, 0, range);
+    }
+
+    pub fn triangle_count(&self) -> u32 {
+        self.index_count / 3
     }
 }
 
@@ -286,11 +298,18 @@ pub fn rock(radius: f32, seed: u32) -> MeshData {
     m
 }
 
-/// The fish body: an elliptic cross-section lofted along x (nose +0.5, tail −0.5), laterally
-/// compressed, plus a forked tail fin. Unit length; the instance scale sizes it.
+/// The fish body at full detail (20 rings of 16 segments, 644 triangles).
 pub fn fish() -> MeshData {
-    let rings = 20;
-    let segments = 16;
+    fish_lod(20, 16)
+}
+
+/// The fish body: an elliptic cross-section lofted along x (nose +0.5, tail −0.5), laterally
+/// compressed, plus a forked tail fin. Unit length; the instance scale sizes it. `rings` along
+/// the body and `segments` around it set the level of detail (2 · rings · segments + 4
+/// triangles).
+pub fn fish_lod(rings: u32, segments: u32) -> MeshData {
+    let rings = rings.max(2);
+    let segments = segments.max(3);
     let mut m = MeshData::default();
     for r in 0..=rings {
         let s = r as f32 / rings as f32; // 0 nose … 1 tail root

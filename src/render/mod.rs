@@ -1,22 +1,34 @@
-//! The wgpu renderer of scene mode: one module per technique, each beside its WGSL file in
-//! `shaders/` (see docs/scene.md for the technique → file → reference table).
+//! The wgpu renderer of scene mode. It only renders: it reads the scene model and a per-frame
+//! snapshot, never steps or edits them. One module per technique, each beside its WGSL file of
+//! the same name in `shaders/` with its bind-group layouts and a typed pipeline struct (see
+//! docs/scene.md for the technique → file → reference table); `pipeline` builds them all the
+//! same way (naga, the interface check, wgpu in an error scope) for the renderer, hot reload
+//! and `lectern check` (`check`).
 
+pub mod check;
+pub mod debug;
+pub mod fish;
 pub mod frame;
 pub mod gpu;
 pub mod headless;
+pub mod interface;
 pub mod mesh;
 pub mod normal_map;
-pub mod pipelines;
+pub mod pbr;
+pub mod pipeline;
 pub mod renderer;
 pub mod resources;
 pub mod shaders;
+pub mod shadow;
 pub mod sky;
-pub mod view;
+pub mod targets;
+pub mod tonemap;
+pub mod water;
 
+pub use check::{check_shader_file, pipeline_check_skipped};
 pub use frame::{DebugView, RenderSettings};
 pub use headless::Headless;
-pub use renderer::Renderer;
-pub use view::SceneView;
+pub use renderer::{FrameInfo, Renderer};
 
 /// Shaders relative to the project folder.
 pub const SHADER_DIR: &str = "shaders";

@@ -1,40 +1,47 @@
-//! The frame: shadow map → opaque HDR pass (sky background, meshes, instanced fish) → copy of
-//! the opaque colour → water pass (reads that copy and the depth) → tone map or debug view
-//! into the caller's target. Window, `render-scene`, tests and the benchmark share it.
+//! The frame: shadow map → opaque HDR pass (meshes, fish by level of detail, sky background
+//! last) → copy of the opaque colour → water pass (reads that copy and the depth) → tone map
+//! (scaling the HDR image up to the target) or a debug view into the caller's target. The
+//! window, `render-scene`, tests and the benchmark share it. It only renders: it reads the
+//! scene model and a per-frame snapshot and never changes either.
 
 use std::path::{Path, PathBuf};
 
-use anyhow::Result;
 use wgpu::util::DeviceExt;
 
 use crate::diag::Diagnostic;
 use crate::scene::{FrameSnapshot, Scene};
 
+use super::fish::LodView;
 use super::frame::{self, DebugView, Globals, RenderSettings};
-use super::pipelines::{Ctx, DEPTH_FORMAT, HDR_FORMAT, Layouts, Pipelines};
+use super::pipeline::{BuildEnv, Layouts, Passes};
 use super::resources::SceneResources;
-use super::sky::{self, Environment};
+use super::shadow;
+use super::sky::{self, Environment, SkyKey};
+use super::targets::{Targets, entry};
+use super::tonemap::PostParams;
 
-pub const SHADOW_MAP_SIZE: u32 = 1024;
+pub use super::shadow::SHADOW_MAP_SIZE;
 
-struct Targets {
-    size: (u32, u32),
-    hdr: wgpu::Texture,
-    hdr_view: wgpu::TextureView,
-    depth_view: wgpu::TextureView,
-    scene_color: wgpu::Texture,
-    water_inputs: wgpu::BindGroup,
-    tonemap: wgpu::BindGroup,
+/// What the last frame drew, for the panel and the tests.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct FrameInfo {
+    /// the HDR targets' size (the output's, times the render scale)
+    pub render_size: (u32, u32),
+    /// visible fish per level of detail, finest first
+    pub fish_per_lod: [u32; 3],
+    /// every fish drawn into the shadow map
+    pub fish_in_shadow: u32,
 }
 
 pub struct Renderer {
     device: wgpu::Device,
     queue: wgpu::Queue,
     layouts: Layouts,
-    pipelines: Pipelines,
+    passes: Passes,
     output_format: wgpu::TextureFormat,
     linear_clamp: wgpu::Sampler,
     linear_repeat: wgpu::Sampler,
+    shadow_sampler: wgpu::Sampler,
     shadow_view: wgpu::TextureView,
     globals: wgpu::Buffer,
     post_params: wgpu::Buffer,
@@ -42,8 +49,12 @@ pub struct Renderer {
     shadow_frame_group: wgpu::BindGroup,
     debug_group: wgpu::BindGroup,
     env: Environment,
+    /// what `env` was made from: the sky and sun, and the generations of their pipelines
+    sky_key: SkyKey,
+    sky_generations: (u64, u64),
     res: SceneResources,
     targets: Option<Targets>,
+    info: FrameInfo,
 }
 
 fn sampler(
@@ -63,31 +74,17 @@ fn sampler(
     })
 }
 
-fn tex(
-    device: &wgpu::Device,
-    label: &str,
-    size: (u32, u32),
-    format: wgpu::TextureFormat,
-    usage: wgpu::TextureUsages,
-) -> wgpu::Texture {
-    device.create_texture(&wgpu::TextureDescriptor {
-        label: Some(label),
-        size: wgpu::Extent3d {
-            width: size.0.max(1),
-            height: size.1.max(1),
-            depth_or_array_layers: 1,
-        },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format,
-        usage,
-        view_formats: &[],
-    })
-}
-
-fn entry(binding: u32, resource: wgpu::BindingResource<'_>) -> wgpu::BindGroupEntry<'_> {
-    wgpu::BindGroupEntry { binding, resource }
+/// The size the scene is drawn at for an output of `size` at `render_scale`.
+pub fn render_size(size: (u32, u32), render_scale: f32) -> (u32, u32) {
+    let s = if render_scale.is_finite() {
+        render_scale.clamp(0.1, 1.0)
+    } else {
+        1.0
+    };
+    (
+        ((size.0 as f32 * s).round() as u32).max(1),
+        ((size.1 as f32 * s).round() as u32).max(1),
+    )
 }
 
 impl Renderer {
@@ -101,8 +98,8 @@ impl Renderer {
         output_format: wgpu::TextureFormat,
     ) -> Result<Self, Diagnostic> {
         let layouts = Layouts::new(device);
-        let pipelines = Pipelines::new(
-            &Ctx {
+        let passes = Passes::new(
+            &BuildEnv {
                 device,
                 layouts: &layouts,
                 output_format,
@@ -116,14 +113,7 @@ impl Renderer {
             wgpu::AddressMode::ClampToEdge,
             Some(wgpu::CompareFunction::LessEqual),
         );
-        let shadow = tex(
-            device,
-            "shadow map",
-            (SHADOW_MAP_SIZE, SHADOW_MAP_SIZE),
-            DEPTH_FORMAT,
-            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
-        );
-        let shadow_view = shadow.create_view(&Default::default());
+        let shadow_view = shadow::shadow_map(device);
         let globals = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("globals"),
             size: std::mem::size_of::<Globals>() as u64,
@@ -132,77 +122,77 @@ impl Renderer {
         });
         let post_params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("post params"),
-            contents: &[0u8; 16],
+            contents: &[0u8; std::mem::size_of::<PostParams>()],
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         });
-        let env = sky::build(device, queue, &layouts, &pipelines, scene, &linear_clamp);
+        let sky_key = SkyKey::of(scene);
+        let env = sky::build(
+            device,
+            queue,
+            &layouts,
+            (&passes.sky.current, &passes.prefilter.current),
+            &sky_key,
+            &linear_clamp,
+        );
         let res = SceneResources::new(device, queue, &layouts, scene, &linear_repeat);
         let shadow_frame_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("shadow frame"),
-            layout: &layouts.shadow_frame,
+            layout: &layouts.shadow_frame.layout,
             entries: &[entry(0, globals.as_entire_binding())],
         });
-        let mut r = Self {
-            frame_group: shadow_frame_group.clone(),
-            debug_group: shadow_frame_group.clone(),
-            shadow_frame_group,
+        let (frame_group, debug_group) = env_groups(
+            device,
+            &layouts,
+            &globals,
+            &post_params,
+            &env,
+            (&linear_clamp, &shadow_sampler),
+            &shadow_view,
+        );
+        Ok(Self {
             device: device.clone(),
             queue: queue.clone(),
             layouts,
-            pipelines,
+            passes,
             output_format,
             linear_clamp,
             linear_repeat,
+            shadow_sampler,
             shadow_view,
             globals,
             post_params,
+            frame_group,
+            shadow_frame_group,
+            debug_group,
             env,
+            sky_key,
+            sky_generations: (0, 0),
             res,
             targets: None,
-        };
-        r.frame_group = r.make_frame_group(&shadow_sampler);
-        r.debug_group = r.make_debug_group();
-        Ok(r)
-    }
-
-    fn make_frame_group(&self, shadow_sampler: &wgpu::Sampler) -> wgpu::BindGroup {
-        self.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("frame"),
-            layout: &self.layouts.frame,
-            entries: &[
-                entry(0, self.globals.as_entire_binding()),
-                entry(1, wgpu::BindingResource::TextureView(&self.env.view)),
-                entry(2, wgpu::BindingResource::Sampler(&self.linear_clamp)),
-                entry(3, wgpu::BindingResource::TextureView(&self.shadow_view)),
-                entry(4, wgpu::BindingResource::Sampler(shadow_sampler)),
-            ],
+            info: FrameInfo::default(),
         })
     }
 
-    fn make_debug_group(&self) -> wgpu::BindGroup {
-        self.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("debug"),
-            layout: &self.layouts.debug,
-            entries: &[
-                entry(0, self.post_params.as_entire_binding()),
-                entry(1, wgpu::BindingResource::TextureView(&self.shadow_view)),
-                entry(2, wgpu::BindingResource::TextureView(&self.env.view)),
-                entry(3, wgpu::BindingResource::Sampler(&self.linear_clamp)),
-            ],
-        })
-    }
-
-    /// A new scene (reload): meshes, materials and sky are rebuilt; camera and time live in
-    /// the simulation, not here, so they are untouched.
-    pub fn set_scene(&mut self, scene: &Scene) {
-        self.env = sky::build(
+    fn env_changed(&mut self) {
+        (self.frame_group, self.debug_group) = env_groups(
             &self.device,
-            &self.queue,
             &self.layouts,
-            &self.pipelines,
-            scene,
-            &self.linear_clamp,
+            &self.globals,
+            &self.post_params,
+            &self.env,
+            (&self.linear_clamp, &self.shadow_sampler),
+            &self.shadow_view,
         );
+    }
+
+    /// A new scene (reload): meshes and materials are rebuilt, the sky only if it or the sun
+    /// changed; camera and time live in the simulation, not here, so they are untouched.
+    pub fn set_scene(&mut self, scene: &Scene) {
+        let key = SkyKey::of(scene);
+        if key != self.sky_key {
+            self.sky_key = key;
+            self.rebuild_environment();
+        }
         self.res = SceneResources::new(
             &self.device,
             &self.queue,
@@ -210,28 +200,39 @@ impl Renderer {
             scene,
             &self.linear_repeat,
         );
-        let shadow_sampler = sampler(
-            &self.device,
-            wgpu::AddressMode::ClampToEdge,
-            Some(wgpu::CompareFunction::LessEqual),
-        );
-        self.frame_group = self.make_frame_group(&shadow_sampler);
-        self.debug_group = self.make_debug_group();
     }
 
-    /// Hot reload of shaders: rebuilds those that use a changed file. Returns whether any did.
+    fn rebuild_environment(&mut self) {
+        self.env = sky::build(
+            &self.device,
+            &self.queue,
+            &self.layouts,
+            (&self.passes.sky.current, &self.passes.prefilter.current),
+            &self.sky_key,
+            &self.linear_clamp,
+        );
+        self.sky_generations = (self.passes.sky.generation, self.passes.prefilter.generation);
+        self.env_changed();
+    }
+
+    /// Hot reload of shaders: rebuilds the techniques that use a changed file (and the sky
+    /// cube when its own shaders were rebuilt). Returns whether any technique was affected.
     pub fn reload_shaders(&mut self, changed: &[PathBuf]) -> bool {
-        let ctx = Ctx {
+        let env = BuildEnv {
             device: &self.device,
             layouts: &self.layouts,
             output_format: self.output_format,
         };
-        self.pipelines.reload(&ctx, changed)
+        let any = self.passes.reload(&env, changed);
+        if (self.passes.sky.generation, self.passes.prefilter.generation) != self.sky_generations {
+            self.rebuild_environment();
+        }
+        any
     }
 
     /// The current shader errors (the previous pipelines are in use meanwhile).
     pub fn shader_errors(&self) -> Vec<&Diagnostic> {
-        self.pipelines.errors()
+        self.passes.errors()
     }
 
     /// Fish the instance buffer holds now (it grows with the count, to the next power of two).
@@ -239,7 +240,7 @@ impl Renderer {
         self.res.fish_capacity
     }
 
-    /// Vertices per side of the water grid in use.
+    /// Indices of the water grid in use.
     pub fn water_index_count(&self) -> u32 {
         self.res.water_index_count
     }
@@ -248,62 +249,22 @@ impl Renderer {
         self.output_format
     }
 
+    /// What the last frame drew.
+    pub fn frame_info(&self) -> &FrameInfo {
+        &self.info
+    }
+
     fn ensure_targets(&mut self, size: (u32, u32)) {
         if self.targets.as_ref().is_some_and(|t| t.size == size) {
             return;
         }
-        use wgpu::TextureUsages as U;
-        let d = &self.device;
-        let hdr = tex(
-            d,
-            "hdr",
+        self.targets = Some(Targets::new(
+            &self.device,
+            &self.layouts,
             size,
-            HDR_FORMAT,
-            U::RENDER_ATTACHMENT | U::TEXTURE_BINDING | U::COPY_SRC,
-        );
-        let depth = tex(
-            d,
-            "depth",
-            size,
-            DEPTH_FORMAT,
-            U::RENDER_ATTACHMENT | U::TEXTURE_BINDING,
-        );
-        let scene_color = tex(
-            d,
-            "scene colour",
-            size,
-            HDR_FORMAT,
-            U::COPY_DST | U::TEXTURE_BINDING,
-        );
-        let hdr_view = hdr.create_view(&Default::default());
-        let depth_view = depth.create_view(&Default::default());
-        let scene_view = scene_color.create_view(&Default::default());
-        let water_inputs = d.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("water inputs"),
-            layout: &self.layouts.water_inputs,
-            entries: &[
-                entry(0, wgpu::BindingResource::TextureView(&scene_view)),
-                entry(1, wgpu::BindingResource::TextureView(&depth_view)),
-                entry(2, wgpu::BindingResource::Sampler(&self.linear_clamp)),
-            ],
-        });
-        let tonemap = d.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("tonemap"),
-            layout: &self.layouts.tonemap,
-            entries: &[
-                entry(0, self.post_params.as_entire_binding()),
-                entry(1, wgpu::BindingResource::TextureView(&hdr_view)),
-            ],
-        });
-        self.targets = Some(Targets {
-            size,
-            hdr,
-            hdr_view,
-            depth_view,
-            scene_color,
-            water_inputs,
-            tonemap,
-        });
+            &self.post_params,
+            &self.linear_clamp,
+        ));
     }
 
     /// Records and submits one frame into `target` (of `output_format`, `size` pixels).
@@ -330,26 +291,39 @@ impl Renderer {
         size: (u32, u32),
     ) -> wgpu::CommandEncoder {
         let size = (size.0.max(1), size.1.max(1));
-        self.ensure_targets(size);
-        let g = frame::globals(scene, snap, settings, size, self.env.mips);
+        let inner = render_size(size, settings.render_scale);
+        self.ensure_targets(inner);
+        let g = frame::globals(scene, snap, settings, inner, self.env.mips);
         self.queue
             .write_buffer(&self.globals, 0, bytemuck::bytes_of(&g));
-        let post: [f32; 4] = [
-            settings.exposure,
-            settings.debug_view.code(),
-            size.0 as f32,
-            size.1 as f32,
-        ];
-        let post = match settings.debug_view {
-            DebugView::EnvCube => [3.0, self.env.mips as f32, size.0 as f32, size.1 as f32],
-            _ => post,
+        let post = PostParams {
+            exposure: settings.exposure,
+            debug_view: settings.debug_view.code(),
+            env_mip_count: self.env.mips as f32,
+            _pad: 0.0,
+            viewport_size_px: [size.0 as f32, size.1 as f32],
+            _pad2: [0.0; 2],
         };
         self.queue
             .write_buffer(&self.post_params, 0, bytemuck::bytes_of(&post));
-        self.res.update(&self.device, &self.queue, scene, snap);
+        let aspect = inner.0 as f32 / inner.1 as f32;
+        let lod_view = LodView {
+            clip_from_world: snap.camera.clip_from_view(aspect) * snap.camera.view_from_world(),
+            px_per_m_at_1m: inner.1 as f32 / (2.0 * (0.5 * snap.camera.fov_y_rad).tan()),
+            eye: snap.camera.eye,
+            detail: settings.fish_detail,
+        };
+        self.res
+            .update(&self.device, &self.queue, scene, snap, &lod_view);
+        let ranges = &self.res.fish_ranges;
+        self.info = FrameInfo {
+            render_size: inner,
+            fish_per_lod: ranges.visible.clone().map(|r| r.len() as u32),
+            fish_in_shadow: ranges.all.len() as u32,
+        };
 
         let t = self.targets.as_ref().expect("targets made above");
-        let p = &self.pipelines;
+        let p = &self.passes;
         let res = &self.res;
         let mut enc = self
             .device
@@ -357,7 +331,7 @@ impl Renderer {
                 label: Some("scene frame"),
             });
 
-        // 1. shadow map from the sun: rocks, floating bodies, fish
+        // 1. shadow map from the sun: rocks, floating bodies, every fish at the coarsest level
         {
             let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("shadow"),
@@ -371,17 +345,17 @@ impl Renderer {
                 }),
                 ..Default::default()
             });
-            pass.set_pipeline(p.get("shadow"));
+            pass.set_pipeline(&p.shadow.current.pipeline);
             pass.set_bind_group(0, &self.shadow_frame_group, &[]);
             for o in res.objects.iter().filter(|o| o.casts_shadow) {
                 pass.set_bind_group(1, &o.bind_group, &[]);
                 o.mesh.draw(&mut pass, 1);
             }
-            if res.fish_count > 0 {
-                pass.set_pipeline(p.get("fish.shadow"));
+            if !ranges.all.is_empty() {
+                pass.set_pipeline(&p.fish.current.shadow);
                 pass.set_bind_group(0, &self.shadow_frame_group, &[]);
                 pass.set_vertex_buffer(1, res.fish_instances.slice(..));
-                res.fish_mesh.draw(&mut pass, res.fish_count);
+                res.fish_meshes.lods[2].draw_instances(&mut pass, ranges.all.clone());
             }
         }
 
@@ -409,20 +383,22 @@ impl Renderer {
                 ..Default::default()
             });
             pass.set_bind_group(0, &self.frame_group, &[]);
-            pass.set_pipeline(p.get("pbr"));
+            pass.set_pipeline(&p.pbr.current.pipeline);
             for o in &res.objects {
                 pass.set_bind_group(1, &res.materials[o.material].bind_group, &[]);
                 pass.set_bind_group(2, &o.bind_group, &[]);
                 o.mesh.draw(&mut pass, 1);
             }
-            if res.fish_count > 0 {
-                pass.set_pipeline(p.get("fish"));
+            if ranges.visible_count() > 0 {
+                pass.set_pipeline(&p.fish.current.main);
                 pass.set_bind_group(1, &res.materials[res.fish_material].bind_group, &[]);
                 pass.set_vertex_buffer(1, res.fish_instances.slice(..));
-                res.fish_mesh.draw(&mut pass, res.fish_count);
+                for (mesh, range) in res.fish_meshes.lods.iter().zip(&ranges.visible) {
+                    mesh.draw_instances(&mut pass, range.clone());
+                }
             }
             // last, so the depth test skips every covered pixel
-            pass.set_pipeline(p.get("sky.background"));
+            pass.set_pipeline(&p.sky.current.background);
             pass.draw(0..3, 0..1);
         }
 
@@ -453,7 +429,7 @@ impl Renderer {
                 }),
                 ..Default::default()
             });
-            pass.set_pipeline(p.get("water"));
+            pass.set_pipeline(&p.water.current.pipeline);
             pass.set_bind_group(0, &self.frame_group, &[]);
             pass.set_bind_group(1, &t.water_inputs, &[]);
             pass.set_vertex_buffer(0, res.water_vertices.slice(..));
@@ -461,7 +437,7 @@ impl Renderer {
             pass.draw_indexed(0..res.water_index_count, 0, 0..1);
         }
 
-        // 5. to the display: tone map, or a debug view
+        // 5. to the display: tone map (scaling up), or a debug view
         {
             let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("output"),
@@ -478,11 +454,11 @@ impl Renderer {
             });
             match settings.debug_view {
                 DebugView::ShadowMap | DebugView::EnvCube => {
-                    pass.set_pipeline(p.get("debug"));
+                    pass.set_pipeline(&p.debug.current.pipeline);
                     pass.set_bind_group(0, &self.debug_group, &[]);
                 }
-                _ => {
-                    pass.set_pipeline(p.get("tonemap"));
+                DebugView::None | DebugView::Normals => {
+                    pass.set_pipeline(&p.tonemap.current.pipeline);
                     pass.set_bind_group(0, &t.tonemap, &[]);
                 }
             }
@@ -490,4 +466,39 @@ impl Renderer {
         }
         enc
     }
+}
+
+/// The bind groups that read the environment cube: group 0 of the lit passes, and the debug
+/// views'.
+fn env_groups(
+    device: &wgpu::Device,
+    layouts: &Layouts,
+    globals: &wgpu::Buffer,
+    post_params: &wgpu::Buffer,
+    env: &Environment,
+    (linear_clamp, shadow_sampler): (&wgpu::Sampler, &wgpu::Sampler),
+    shadow_view: &wgpu::TextureView,
+) -> (wgpu::BindGroup, wgpu::BindGroup) {
+    let frame = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("frame"),
+        layout: &layouts.frame.layout,
+        entries: &[
+            entry(0, globals.as_entire_binding()),
+            entry(1, wgpu::BindingResource::TextureView(&env.view)),
+            entry(2, wgpu::BindingResource::Sampler(linear_clamp)),
+            entry(3, wgpu::BindingResource::TextureView(shadow_view)),
+            entry(4, wgpu::BindingResource::Sampler(shadow_sampler)),
+        ],
+    });
+    let debug = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("debug"),
+        layout: &layouts.debug.layout,
+        entries: &[
+            entry(0, post_params.as_entire_binding()),
+            entry(1, wgpu::BindingResource::TextureView(shadow_view)),
+            entry(2, wgpu::BindingResource::TextureView(&env.view)),
+            entry(3, wgpu::BindingResource::Sampler(linear_clamp)),
+        ],
+    });
+    (frame, debug)
 }

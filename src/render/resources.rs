@@ -3,40 +3,16 @@
 
 use std::collections::HashMap;
 
-use bytemuck::{Pod, Zeroable};
-use glam::{Mat4, Quat, Vec3};
+use glam::{Mat4, Vec3};
 use wgpu::util::DeviceExt;
 
 use crate::scene::{FrameSnapshot, Material, NormalPattern, Object, Scene, Shape};
 
+use super::fish::{FishInstanceGpu, FishMeshes, LodRanges, LodSorter, LodView};
 use super::mesh::{self, GpuMesh};
 use super::normal_map;
-use super::pipelines::{FishInstanceGpu, Layouts};
-
-#[repr(C)]
-#[derive(Clone, Copy, Pod, Zeroable)]
-pub struct MaterialGpu {
-    base_color: [f32; 4],
-    params: [f32; 4],
-    uv: [f32; 4],
-}
-
-impl MaterialGpu {
-    pub fn from(m: &Material) -> Self {
-        Self {
-            base_color: [m.base_color[0], m.base_color[1], m.base_color[2], 1.0],
-            params: [m.metallic, m.roughness, m.reflectance, m.normal_strength],
-            uv: [m.uv_scale, 0.0, 0.0, 0.0],
-        }
-    }
-}
-
-#[repr(C)]
-#[derive(Clone, Copy, Pod, Zeroable)]
-struct ObjectGpu {
-    world_from_object: [[f32; 4]; 4],
-    flags: [f32; 4],
-}
+use super::pbr::{MaterialGpu, ObjectGpu};
+use super::pipeline::Layouts;
 
 pub struct MaterialRes {
     pub uniform: wgpu::Buffer,
@@ -54,16 +30,22 @@ pub struct ObjectRes {
     pub casts_shadow: bool,
     world_from_object: Mat4,
     world_uv: bool,
+    /// what was last uploaded, so a resting object is not rewritten each frame
+    uploaded: Option<Mat4>,
 }
 
 pub struct SceneResources {
     pub materials: Vec<MaterialRes>,
     pub objects: Vec<ObjectRes>,
-    pub fish_mesh: GpuMesh,
+    pub fish_meshes: FishMeshes,
     pub fish_material: usize,
     pub fish_instances: wgpu::Buffer,
     pub fish_capacity: usize,
-    pub fish_count: u32,
+    /// where each level of detail's fish are in `fish_instances` this frame
+    pub fish_ranges: LodRanges,
+    fish_sorter: LodSorter,
+    /// the material constants last uploaded (sliders edit them live)
+    uploaded_materials: Vec<Material>,
     pub water_vertices: wgpu::Buffer,
     pub water_indices: wgpu::Buffer,
     pub water_index_count: u32,
@@ -163,7 +145,7 @@ impl SceneResources {
                 });
                 let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
                     label: Some(&m.name),
-                    layout: &layouts.material,
+                    layout: &layouts.material.layout,
                     entries: &[
                         wgpu::BindGroupEntry {
                             binding: 0,
@@ -199,7 +181,7 @@ impl SceneResources {
                 });
                 let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
                     label: Some("object"),
-                    layout: &layouts.object,
+                    layout: &layouts.object.layout,
                     entries: &[wgpu::BindGroupEntry {
                         binding: 0,
                         resource: uniform.as_entire_binding(),
@@ -215,6 +197,7 @@ impl SceneResources {
                     casts_shadow: !matches!(o, Object::Seabed { .. }),
                     world_from_object,
                     world_uv,
+                    uploaded: None,
                 }
             })
             .collect();
@@ -226,11 +209,13 @@ impl SceneResources {
         Self {
             materials,
             objects,
-            fish_mesh: GpuMesh::upload(device, "fish", &mesh::fish()),
+            fish_meshes: FishMeshes::new(device),
             fish_material,
             fish_instances: Self::fish_buffer(device, fish_capacity),
             fish_capacity,
-            fish_count: 0,
+            fish_ranges: LodRanges::default(),
+            fish_sorter: LodSorter::default(),
+            uploaded_materials: scene.materials.clone(),
             water_vertices: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("water grid"),
                 contents: bytemuck::cast_slice(&grid),
@@ -276,17 +261,22 @@ impl SceneResources {
         })
     }
 
-    /// Uploads this frame's materials (sliders edit them live), transforms and fish.
+    /// Uploads what changed this frame: materials (sliders edit them live), the transforms of
+    /// moving objects, and the fish sorted by level of detail as `view` sees them.
     pub fn update(
         &mut self,
         device: &wgpu::Device,
         queue: &wgpu::Queue,
         scene: &Scene,
         snap: &FrameSnapshot,
+        view: &LodView,
     ) {
         self.ensure_water_grid(device, scene);
-        for (res, m) in self.materials.iter().zip(&scene.materials) {
-            queue.write_buffer(&res.uniform, 0, bytemuck::bytes_of(&MaterialGpu::from(m)));
+        if self.uploaded_materials != scene.materials {
+            for (res, m) in self.materials.iter().zip(&scene.materials) {
+                queue.write_buffer(&res.uniform, 0, bytemuck::bytes_of(&MaterialGpu::from(m)));
+            }
+            self.uploaded_materials.clone_from(&scene.materials);
         }
         for o in &mut self.objects {
             if o.floating
@@ -298,31 +288,31 @@ impl SceneResources {
                 o.world_from_object =
                     Mat4::from_rotation_translation(pose.orientation, pose.position);
             }
+            if o.uploaded == Some(o.world_from_object) {
+                continue;
+            }
             let data = ObjectGpu {
                 world_from_object: o.world_from_object.to_cols_array_2d(),
-                flags: [if o.world_uv { 1.0 } else { 0.0 }, 1.0, 0.0, 0.0],
+                world_uv: if o.world_uv { 1.0 } else { 0.0 },
+                ambient_occlusion: 1.0,
+                _pad: [0.0; 2],
             };
             queue.write_buffer(&o.uniform, 0, bytemuck::bytes_of(&data));
+            o.uploaded = Some(o.world_from_object);
         }
         if snap.fish.len() > self.fish_capacity {
             self.fish_capacity = snap.fish.len().next_power_of_two();
             self.fish_instances = Self::fish_buffer(device, self.fish_capacity);
         }
-        let instances: Vec<FishInstanceGpu> = snap
-            .fish
-            .iter()
-            .map(|f| {
-                let q: Quat = f.orientation.normalize();
-                FishInstanceGpu {
-                    position_scale: [f.position.x, f.position.y, f.position.z, f.scale],
-                    rotation: q.to_array(),
-                    tail_phase: f.tail_phase,
-                }
-            })
-            .collect();
-        if !instances.is_empty() {
-            queue.write_buffer(&self.fish_instances, 0, bytemuck::cast_slice(&instances));
+        self.fish_ranges = self.fish_sorter.sort(&snap.fish, view);
+        let sorted = &self.fish_sorter.sorted;
+        if !sorted.is_empty() {
+            queue.write_buffer(&self.fish_instances, 0, bytemuck::cast_slice(sorted));
         }
-        self.fish_count = instances.len() as u32;
+    }
+
+    /// Fish in the instance buffer this frame (all of them, seen or not).
+    pub fn fish_count(&self) -> u32 {
+        self.fish_ranges.all.end
     }
 }

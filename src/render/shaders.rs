@@ -87,7 +87,7 @@ fn read(path: &Path) -> Result<String, Diagnostic> {
 
 /// Parses and validates with naga; the error names the original file, line and column, and its
 /// message is naga's own rendering (with the source excerpt).
-pub fn validate(src: &ShaderSource) -> Result<naga::Module, Diagnostic> {
+pub fn validate(src: &ShaderSource) -> Result<(naga::Module, naga::valid::ModuleInfo), Diagnostic> {
     let module = naga::front::wgsl::parse_str(&src.text).map_err(|e| {
         let (line, col) = e
             .location(&src.text)
@@ -104,7 +104,7 @@ pub fn validate(src: &ShaderSource) -> Result<naga::Module, Diagnostic> {
         naga::valid::ValidationFlags::all(),
         naga::valid::Capabilities::default(),
     );
-    validator.validate(&module).map_err(|e| {
+    let info = validator.validate(&module).map_err(|e| {
         let (line, col) = e
             .location(&src.text)
             .map(|l| (l.line_number as usize, l.line_position as usize))
@@ -116,7 +116,7 @@ pub fn validate(src: &ShaderSource) -> Result<naga::Module, Diagnostic> {
             e.emit_to_string_with_path(&src.text, &src.path.display().to_string()),
         )
     })?;
-    Ok(module)
+    Ok((module, info))
 }
 
 fn diag_at(src: &ShaderSource, line: usize, col: usize, message: String) -> Diagnostic {
@@ -155,11 +155,33 @@ fn remap_lines(src: &ShaderSource, message: &str) -> String {
         .join("\n")
 }
 
+/// A shader that naga parsed and validated: the expanded source, naga's module and what the
+/// validator learnt (which globals each entry point uses).
+pub struct Checked {
+    pub src: ShaderSource,
+    pub module: naga::Module,
+    pub info: naga::valid::ModuleInfo,
+}
+
+impl Checked {
+    /// A diagnostic at byte `offset` of the expanded text, in the file and line it came from.
+    pub fn diag_at_offset(&self, offset: usize, message: impl Into<String>) -> Diagnostic {
+        let text = &self.src.text[..offset.min(self.src.text.len())];
+        let line = text.matches('\n').count() + 1;
+        let col = text[text.rfind('\n').map_or(0, |i| i + 1)..]
+            .chars()
+            .count()
+            + 1;
+        let (file, line) = self.src.origin(line);
+        Diagnostic::new(file, line, col, message)
+    }
+}
+
 /// Load and validate; the expanded, checked source on success.
-pub fn load_checked(path: &Path) -> Result<ShaderSource, Diagnostic> {
+pub fn load_checked(path: &Path) -> Result<Checked, Diagnostic> {
     let src = load(path)?;
-    validate(&src)?;
-    Ok(src)
+    let (module, info) = validate(&src)?;
+    Ok(Checked { src, module, info })
 }
 
 /// For `lectern check`: the problems of one shader file. Include-only files (named `*common*`
@@ -176,7 +198,8 @@ pub fn check_file(path: &Path) -> Vec<Diagnostic> {
     }
 }
 
-fn has_entry_point(text: &str) -> bool {
+/// Whether a shader text declares an entry point (include-only files do not).
+pub fn has_entry_point(text: &str) -> bool {
     ["@vertex", "@fragment", "@compute"]
         .iter()
         .any(|e| text.contains(e))

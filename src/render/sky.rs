@@ -1,16 +1,136 @@
-//! The procedural sky cube map and its roughness-blurred mips (environment mapping with the
-//! split-sum prefiltering of Karis 2013). Made once per scene (or sky edit), not per frame.
+//! The procedural sky (sky.wgsl) rendered into a cube map and drawn as the background
+//! (environment mapping: Blinn & Newell 1976; cube maps: Greene 1986), and its
+//! roughness-blurred mips (prefilter.wgsl; the split-sum prefiltering of Karis 2013). The cube
+//! is made when the sky or the sun changes, never per frame.
 
 use bytemuck::{Pod, Zeroable};
 use wgpu::util::DeviceExt;
 
 use crate::scene::Scene;
 
-use super::pipelines::{CUBE_FORMAT, Layouts, Pipelines};
+use super::pipeline::{
+    CUBE_FORMAT, Ctx, FLOAT, HDR_FORMAT, Layout, Layouts, NO_BIAS, PipelineDesc, Technique,
+    sampler, texture, uniform,
+};
 
+/// Group 1 of the cube-face pass: the sky's colours and the face being drawn.
+pub fn params_layout(device: &wgpu::Device) -> Layout {
+    let vf = wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT;
+    Layout::new(device, "sky params", &[uniform::<SkyParams>(0, vf)])
+}
+
+/// Group 0 of the prefilter pass: roughness and face, the raw sky cube, a sampler.
+pub fn prefilter_layout(device: &wgpu::Device) -> Layout {
+    let vf = wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT;
+    Layout::new(
+        device,
+        "prefilter",
+        &[
+            uniform::<PrefilterParams>(0, vf),
+            texture(1, wgpu::TextureViewDimension::Cube, FLOAT),
+            sampler(2, wgpu::SamplerBindingType::Filtering),
+        ],
+    )
+}
+
+/// The sky's pipelines: into a cube face, and as the background of the opaque pass.
+pub struct SkyPipelines {
+    pub cube: wgpu::RenderPipeline,
+    pub background: wgpu::RenderPipeline,
+}
+
+impl Technique for SkyPipelines {
+    const SHADER: &'static str = "sky.wgsl";
+
+    fn build(ctx: &Ctx, m: &wgpu::ShaderModule) -> Self {
+        let l = ctx.layouts;
+        Self {
+            cube: ctx.pipeline(
+                m,
+                PipelineDesc {
+                    label: "sky.cube",
+                    groups: &[&l.empty, &l.sky_params],
+                    vs: "vs_fullscreen",
+                    fs: Some("fs_cube_face"),
+                    buffers: &[],
+                    color: Some(CUBE_FORMAT),
+                    depth: None,
+                    cull: None,
+                },
+            ),
+            background: ctx.pipeline(
+                m,
+                PipelineDesc {
+                    label: "sky.background",
+                    groups: &[&l.frame],
+                    vs: "vs_fullscreen",
+                    fs: Some("fs_background"),
+                    buffers: &[],
+                    color: Some(HDR_FORMAT),
+                    depth: Some((false, wgpu::CompareFunction::LessEqual, NO_BIAS)),
+                    cull: None,
+                },
+            ),
+        }
+    }
+}
+
+pub struct PrefilterPipeline {
+    pub pipeline: wgpu::RenderPipeline,
+}
+
+impl Technique for PrefilterPipeline {
+    const SHADER: &'static str = "prefilter.wgsl";
+
+    fn build(ctx: &Ctx, m: &wgpu::ShaderModule) -> Self {
+        Self {
+            pipeline: ctx.pipeline(
+                m,
+                PipelineDesc {
+                    label: "prefilter",
+                    groups: &[&ctx.layouts.prefilter],
+                    vs: "vs_fullscreen",
+                    fs: Some("fs_main"),
+                    buffers: &[],
+                    color: Some(CUBE_FORMAT),
+                    depth: None,
+                    cull: None,
+                },
+            ),
+        }
+    }
+}
+
+/// `Params` in prefilter.wgsl.
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
-struct SkyParams {
+pub struct PrefilterParams {
+    pub roughness: f32,
+    pub face: u32,
+    pub _pad: [u32; 2],
+}
+
+/// What the environment is made from: when this is unchanged (a scene reload that touched the
+/// fish, say) the cube is kept.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SkyKey {
+    pub sky: crate::scene::model::Sky,
+    pub sun: crate::scene::model::Sun,
+}
+
+impl SkyKey {
+    pub fn of(scene: &Scene) -> Self {
+        Self {
+            sky: scene.sky.clone(),
+            sun: scene.sun.clone(),
+        }
+    }
+}
+
+/// `SkyParams` in sky.wgsl.
+#[repr(C)]
+#[derive(Clone, Copy, Pod, Zeroable)]
+pub struct SkyParams {
     zenith: [f32; 4],
     horizon: [f32; 4],
     ground: [f32; 4],
@@ -24,9 +144,6 @@ pub struct Environment {
     pub view: wgpu::TextureView,
     pub mips: u32,
 }
-
-/// GGX samples per texel of the blurred mips.
-const PREFILTER_SAMPLES: f32 = 64.0;
 
 fn face_view(texture: &wgpu::Texture, face: u32, mip: u32) -> wgpu::TextureView {
     texture.create_view(&wgpu::TextureViewDescriptor {
@@ -95,21 +212,21 @@ pub fn build(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
     layouts: &Layouts,
-    pipelines: &Pipelines,
-    scene: &Scene,
+    (sky, prefilter): (&SkyPipelines, &PrefilterPipeline),
+    key: &SkyKey,
     sampler: &wgpu::Sampler,
 ) -> Environment {
-    let size = scene.sky.cube_size;
+    let size = key.sky.cube_size;
     // down to 8×8: rougher lobes than that are flat anyway
     let mips = (size.trailing_zeros() + 1).saturating_sub(3).max(1);
     let raw = cube_texture(device, "sky raw", size, 1);
     let env = cube_texture(device, "sky env", size, mips);
-    let sun = glam::Vec3::from(scene.sun.direction).normalize();
-    let k = &scene.sky;
-    let sun_rgb = glam::Vec3::from(scene.sun.color) * k.sun_disc_intensity;
+    let sun = glam::Vec3::from(key.sun.direction).normalize();
+    let k = &key.sky;
+    let sun_rgb = glam::Vec3::from(key.sun.color) * k.sun_disc_intensity;
     let empty = device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: None,
-        layout: &layouts.empty,
+        layout: &layouts.empty.layout,
         entries: &[],
     });
     let mut enc = device.create_command_encoder(&Default::default());
@@ -134,7 +251,7 @@ pub fn build(
         });
         let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: None,
-            layout: &layouts.sky_params,
+            layout: &layouts.sky_params.layout,
             entries: &[wgpu::BindGroupEntry {
                 binding: 0,
                 resource: buf.as_entire_binding(),
@@ -143,7 +260,7 @@ pub fn build(
         fullscreen_pass(
             &mut enc,
             &face_view(&raw, face, 0),
-            pipelines.get("sky.cube"),
+            &sky.cube,
             &[&empty, &group],
         );
     }
@@ -155,7 +272,11 @@ pub fn build(
             0.0
         };
         for face in 0..6 {
-            let params: [f32; 4] = [roughness, face as f32, PREFILTER_SAMPLES, 0.0];
+            let params = PrefilterParams {
+                roughness,
+                face,
+                _pad: [0; 2],
+            };
             let buf = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("prefilter params"),
                 contents: bytemuck::bytes_of(&params),
@@ -163,7 +284,7 @@ pub fn build(
             });
             let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: None,
-                layout: &layouts.prefilter,
+                layout: &layouts.prefilter.layout,
                 entries: &[
                     wgpu::BindGroupEntry {
                         binding: 0,
@@ -182,7 +303,7 @@ pub fn build(
             fullscreen_pass(
                 &mut enc,
                 &face_view(&env, face, mip),
-                pipelines.get("prefilter"),
+                &prefilter.pipeline,
                 &[&group],
             );
         }

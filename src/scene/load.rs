@@ -343,6 +343,25 @@ fn validate(s: &Scene) -> Result<(), Invalid> {
         }
     }
 
+    match s.quality {
+        super::model::Quality::Auto { budget_ms } => {
+            check(in_range(budget_ms, 1.0, 1000.0), "budget_ms", || {
+                format!("quality.budget_ms = {budget_ms} must be in 1..=1000 ms")
+            })?;
+        }
+        super::model::Quality::Fixed {
+            render_scale,
+            fish_detail,
+        } => {
+            check(in_range(render_scale, 0.25, 1.0), "render_scale", || {
+                format!("quality.render_scale = {render_scale} must be in 0.25..=1")
+            })?;
+            check(in_range(fish_detail, 0.0, 4.0), "fish_detail", || {
+                format!("quality.fish_detail = {fish_detail} must be in 0..=4")
+            })?;
+        }
+    }
+
     let f = &s.school;
     check(f.count <= MAX_FISH, "school.count", || {
         format!(

@@ -5,12 +5,14 @@ pub mod bodies;
 mod load;
 pub mod model;
 pub mod orbit;
+pub mod quality;
 pub mod sim;
 pub mod snapshot;
 
 pub use load::{check_file, load_scene, parse_scene};
-pub use model::{Material, NormalPattern, Object, Scene, Shape, Simulation};
+pub use model::{Material, NormalPattern, Object, Quality, Scene, Shape, Simulation};
 pub use orbit::OrbitCamera;
+pub use quality::QualityController;
 pub use sim::{BodyReadout, SceneSim};
 pub use snapshot::{BodyPose, CameraPose, FrameSnapshot};
 

@@ -25,10 +25,44 @@ pub struct Scene {
     pub water: Water,
     pub materials: Vec<Material>,
     pub objects: Vec<Object>,
-    #[serde(default)]
+    #[serde(default = "default_school")]
     pub school: SchoolParams,
     #[serde(default)]
     pub simulation: Simulation,
+    #[serde(default)]
+    pub quality: Quality,
+}
+
+/// The school of the shipped scene (`scenes/water.ron`): what a scene file without a `school`
+/// gets. (The school's own defaults in `crate::school` are for its tests and widgets.)
+pub fn default_school() -> SchoolParams {
+    SchoolParams {
+        count: 10_000,
+        max_speed: 1.6,
+        fish_scale: 0.3,
+        ..SchoolParams::default()
+    }
+}
+
+/// How the window trades detail for frame rate. `render-scene` and the golden images always
+/// draw at full quality unless told otherwise.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum Quality {
+    /// Hold the frame time under `budget_ms`: when frames are slower the scene is drawn at a
+    /// lower resolution (scaled up to the window) and the fish switch to coarser meshes nearer
+    /// the camera; both come back when there is room.
+    Auto { budget_ms: f32 },
+    /// Always these settings: `render_scale` (0.25–1) of the window's size in each direction,
+    /// `fish_detail` (0–4; 1 = default distances, 0 = coarsest mesh everywhere).
+    Fixed { render_scale: f32, fish_detail: f32 },
+}
+
+impl Default for Quality {
+    fn default() -> Self {
+        // 15 frames per second: fluid enough to orbit on a software renderer
+        Self::Auto { budget_ms: 66.0 }
+    }
 }
 
 /// How the scene is stepped: a fixed step for everything (so `render-scene --time T` is
@@ -58,7 +92,7 @@ impl Default for Simulation {
             integrator: Integrator::Rk4,
             linear_drag_per_sec: 1.0,
             angular_drag_per_sec: 1.5,
-            school_half_width: 8.0,
+            school_half_width: 11.0,
         }
     }
 }
@@ -106,11 +140,11 @@ pub struct Sky {
 impl Default for Sky {
     fn default() -> Self {
         Self {
-            zenith_color: [0.18, 0.36, 0.85],
-            horizon_color: [0.75, 0.85, 1.0],
-            ground_color: [0.25, 0.27, 0.3],
-            sun_size_deg: 1.5,
-            sun_disc_intensity: 40.0,
+            zenith_color: [0.12, 0.3, 0.8],
+            horizon_color: [0.7, 0.82, 0.98],
+            ground_color: [0.2, 0.22, 0.25],
+            sun_size_deg: 1.2,
+            sun_disc_intensity: 60.0,
             cube_size: 128,
         }
     }

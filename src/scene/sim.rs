@@ -200,6 +200,22 @@ impl SceneSim {
             .collect()
     }
 
+    /// Refreshes `snap` to this state, reusing its buffers (the window does this every frame).
+    pub fn snapshot_into(&self, snap: &mut FrameSnapshot) {
+        snap.time_secs = self.time_secs() as f32;
+        snap.camera = self.camera.pose();
+        snap.fish.clone_from(&self.fish);
+        snap.bodies.clear();
+        snap.bodies.extend(self.bodies.iter().map(|b| {
+            let (position, orientation) = b.mesh_pose();
+            BodyPose {
+                object_index: b.object_index,
+                position,
+                orientation,
+            }
+        }));
+    }
+
     pub fn snapshot(&self) -> FrameSnapshot {
         FrameSnapshot {
             time_secs: self.time_secs() as f32,

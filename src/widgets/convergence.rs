@@ -275,8 +275,9 @@ impl SlideWidget for Convergence {
                     .map(|s| format!("{name} {s:.2}"))
                     .unwrap_or_else(|| format!("{name} –"));
                 // whole entries move to the next row; none breaks inside
+                let color = style::text_color(ui, *color);
                 ui.add(
-                    egui::Label::new(egui::RichText::new(txt).strong().color(*color))
+                    egui::Label::new(egui::RichText::new(txt).strong().color(color))
                         .wrap_mode(egui::TextWrapMode::Extend),
                 );
             }
@@ -285,6 +286,7 @@ impl SlideWidget for Convergence {
             .iter()
             .flat_map(|d| d.3.iter().map(|p| p.0))
             .fold(f64::INFINITY, f64::min);
+        let visuals = ui.visuals().clone();
         let plot = log_axes_plot("convergence", "step h", "global error");
         let plot = if h_min.is_finite() {
             plot.include_x(h_min.log10() - 0.6)
@@ -321,7 +323,10 @@ impl SlideWidget for Convergence {
                         Text::new(
                             format!("{name} slope"),
                             PlotPoint::new(last[0], last[1]),
-                            egui::RichText::new(text).size(22.0).strong().color(color),
+                            egui::RichText::new(text)
+                                .size(22.0)
+                                .strong()
+                                .color(style::text_color_in(&visuals, color)),
                         )
                         .anchor(egui::Align2::RIGHT_CENTER),
                     );

@@ -100,9 +100,10 @@ impl MethodSet {
     /// One checkbox per method, labelled in its colour.
     pub fn toggles_ui(&mut self, ui: &mut egui::Ui) {
         for e in &mut self.entries {
+            let color = super::style::text_color(ui, e.color);
             ui.checkbox(
                 &mut e.shown,
-                egui::RichText::new(&e.method.name).color(e.color).strong(),
+                egui::RichText::new(&e.method.name).color(color).strong(),
             );
         }
     }

@@ -160,7 +160,10 @@ impl SlideWidget for Neptune {
                     } else {
                         format!("{}: {}", m.method.name, fmt_num(lim))
                     };
-                    ui.colored_label(m.color, egui::RichText::new(txt).strong());
+                    ui.colored_label(
+                        style::text_color(ui, m.color),
+                        egui::RichText::new(txt).strong(),
+                    );
                 }
             });
         }
@@ -184,6 +187,7 @@ impl SlideWidget for Neptune {
             .map(|(_, name, color, path)| (name, color, clip(&path, clamp)))
             .collect();
         let y_name = p.vars[0].clone();
+        let diverged_text = style::text_color(ui, style::DIVERGED);
         Plot::new("neptune")
             .allow_drag(false)
             .allow_zoom(false)
@@ -234,7 +238,7 @@ impl SlideWidget for Neptune {
                                 egui::RichText::new(format!("{name} diverged: off to Neptune!"))
                                     .size(22.0)
                                     .strong()
-                                    .color(style::DIVERGED),
+                                    .color(diverged_text),
                             )
                             .anchor(anchor),
                         );

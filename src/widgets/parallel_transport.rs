@@ -228,7 +228,7 @@ fn view_ui(
                 egui::Align2::CENTER_BOTTOM,
                 "flip",
                 egui::TextStyle::Body.resolve(ui.style()),
-                style::DIVERGED,
+                style::text_color(ui, style::DIVERGED),
             );
         }
     }
@@ -242,7 +242,7 @@ fn view_ui(
         egui::Align2::LEFT_TOP,
         title,
         egui::TextStyle::Body.resolve(ui.style()),
-        body,
+        style::text_color(ui, body),
     );
 }
 

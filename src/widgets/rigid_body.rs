@@ -316,7 +316,10 @@ impl SlideWidget for RigidBodyView {
                         dims,
                         color,
                     );
-                    ui.colored_label(color, egui::RichText::new(m.name()).strong());
+                    ui.colored_label(
+                        style::text_color(ui, color),
+                        egui::RichText::new(m.name()).strong(),
+                    );
                     let mono = |ui: &mut egui::Ui, text: String| {
                         ui.add(egui::Label::new(egui::RichText::new(text).monospace()).extend());
                     };

@@ -247,6 +247,7 @@ fn arrow(painter: &egui::Painter, from: Pos2, to: Pos2, stroke: Stroke) {
 fn loop_ui(ui: &mut egui::Ui, n: &LoopNumbers, steps: u64) {
     let ink = style::ink(ui);
     let accent = style::RK4;
+    let title_color = style::text_color(ui, accent);
     let avail = ui.available_rect_before_wrap();
     let rect = Rect::from_min_size(avail.min, vec2(avail.width(), avail.height().max(200.0)));
     ui.allocate_rect(rect, egui::Sense::hover());
@@ -257,7 +258,7 @@ fn loop_ui(ui: &mut egui::Ui, n: &LoopNumbers, steps: u64) {
     let centres = stage_centres(rect);
     let mut boxes = Vec::new();
     for ((title, lines), centre) in stages(n, steps).into_iter().zip(centres) {
-        let t = painter.layout_no_wrap(title.into(), title_font.clone(), accent);
+        let t = painter.layout_no_wrap(title.into(), title_font.clone(), title_color);
         let body = painter.layout_no_wrap(lines.join("\n"), mono.clone(), ink);
         let size =
             vec2(t.size().x.max(body.size().x), t.size().y + body.size().y) + vec2(16.0, 12.0);
@@ -265,7 +266,7 @@ fn loop_ui(ui: &mut egui::Ui, n: &LoopNumbers, steps: u64) {
         boxes.push(r);
         painter.rect_filled(r, 8.0, ui.visuals().extreme_bg_color);
         painter.rect_stroke(r, 8.0, Stroke::new(1.5, accent), egui::StrokeKind::Inside);
-        painter.galley(r.min + vec2(8.0, 6.0), t.clone(), accent);
+        painter.galley(r.min + vec2(8.0, 6.0), t.clone(), title_color);
         painter.galley(r.min + vec2(8.0, 6.0 + t.size().y), body, ink);
     }
     let stroke = Stroke::new(2.0, ink.gamma_multiply(0.7));
@@ -322,7 +323,11 @@ impl SlideWidget for SimulationLoop {
             });
             for m in Integrator::ALL {
                 let on = current == Some(m);
-                let text = egui::RichText::new(m.name()).color(style::integrator_color(m));
+                let color = match on {
+                    true => style::selected_label_color(ui, style::integrator_color(m)),
+                    false => style::text_color(ui, style::integrator_color(m)),
+                };
+                let text = egui::RichText::new(m.name()).color(color);
                 if ui.selectable_label(on, text).clicked() {
                     self.spec.integrator = Some(m);
                 }
@@ -338,7 +343,7 @@ impl SlideWidget for SimulationLoop {
             Some(n) => loop_ui(ui, &n, self.steps()),
             None => {
                 let why = self.error().unwrap_or_default();
-                ui.colored_label(style::DIVERGED, why);
+                ui.colored_label(style::text_color(ui, style::DIVERGED), why);
             }
         }
     }

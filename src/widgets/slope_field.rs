@@ -338,7 +338,9 @@ impl SlideWidget for SlopeField {
             self.methods.toggles_ui(ui);
             ui.checkbox(
                 &mut self.spec.exact,
-                egui::RichText::new("exact").color(style::EXACT).strong(),
+                egui::RichText::new("exact")
+                    .color(style::text_color(ui, style::EXACT))
+                    .strong(),
             );
         });
         style::problems_ui(ui, self.ode.load_error(), &self.methods.errors);
@@ -366,7 +368,10 @@ impl SlideWidget for SlopeField {
                     (Some(e), None) => format!("{} {}", p.name, fmt_num(e)),
                     (None, None) => format!("{} –", p.name),
                 };
-                ui.colored_label(p.color, egui::RichText::new(txt).monospace());
+                ui.colored_label(
+                    style::text_color(ui, p.color),
+                    egui::RichText::new(txt).monospace(),
+                );
             }
         });
         let show_exact = self.spec.exact;

@@ -218,7 +218,10 @@ impl SlideWidget for Spiral {
                             );
                             p.points(Points::new("end", vec![end]).color(color).radius(5.0));
                         });
-                    ui.colored_label(color, egui::RichText::new(name.as_str()).strong());
+                    ui.colored_label(
+                        style::text_color(ui, color),
+                        egui::RichText::new(name.as_str()).strong(),
+                    );
                     let radii: Vec<String> =
                         panel.revs.iter().take(4).map(|r| fmt_num(*r)).collect();
                     ui.label(format!("r per turn: {}", radii.join(", ")));

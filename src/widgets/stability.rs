@@ -217,7 +217,10 @@ impl SlideWidget for Stability {
         ui.horizontal(|ui| {
             ui.label("|R(hλ)| ≤ 1:");
             for (name, color, _) in &entries {
-                ui.colored_label(*color, egui::RichText::new(name).strong());
+                ui.colored_label(
+                    style::text_color(ui, *color),
+                    egui::RichText::new(name).strong(),
+                );
             }
             if self.spec.lambda.is_some() {
                 ui.add(egui::Slider::new(&mut self.spec.h, 0.01..=4.0).text("h"));
@@ -232,7 +235,10 @@ impl SlideWidget for Stability {
                 ));
                 for (name, color, t) in &entries {
                     let lim = stable_h_limit(t, C(lr, li), 10.0);
-                    ui.colored_label(*color, format!("{name}: {}", style::fmt_num(lim)));
+                    ui.colored_label(
+                        style::text_color(ui, *color),
+                        format!("{name}: {}", style::fmt_num(lim)),
+                    );
                 }
             });
         }

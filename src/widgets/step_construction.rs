@@ -227,7 +227,7 @@ impl SlideWidget for StepConstruction {
                 let colour = if m == c {
                     ui.visuals().strong_text_color()
                 } else {
-                    style::method_color(c.key())
+                    style::text_color(ui, style::method_color(c.key()))
                 };
                 let text = egui::RichText::new(c.name()).color(colour).strong();
                 if ui.selectable_label(m == c, text).clicked() {
@@ -277,6 +277,7 @@ impl SlideWidget for StepConstruction {
         } else {
             ui.label(format!("stage {stage} of {n}: press ] to continue"));
         }
+        let visuals = ui.visuals().clone();
         Plot::new("step-construction")
             .width(ui.available_width())
             .allow_drag(false)
@@ -318,7 +319,9 @@ impl SlideWidget for StepConstruction {
                             Text::new(
                                 a.label.clone(),
                                 pos,
-                                egui::RichText::new(&a.label).size(20.0).color(c),
+                                egui::RichText::new(&a.label)
+                                    .size(20.0)
+                                    .color(style::text_color_in(&visuals, c)),
                             )
                             .anchor(a.anchor),
                         );

@@ -16,9 +16,10 @@ pub const FIELD: Color32 = Color32::from_rgb(150, 150, 160);
 pub const DIVERGED: Color32 = Color32::from_rgb(200, 0, 0);
 /// The adaptive embedded pairs. The Okabe–Ito palette is spent on the methods above, so these
 /// are mid-luminance hues chosen to stay apart from it and from each other, each with a
-/// contrast of at least 3:1 on both slide themes (light paper and dark slate; tested):
-/// Dopri5 a deeper blue than RK5 (the same formula at fixed h), Tsit5 ochre, the Verner family
-/// from brown (6) through slate (7) and orchid (8) to violet (9), DOP853 magenta.
+/// contrast of at least 3:1 as lines on both slide themes (light paper and dark slate; tested;
+/// their labels go through [`text_color`]): Dopri5 a deeper blue than RK5 (the same formula at
+/// fixed h), Tsit5 ochre, the Verner family from brown (6) through slate (7) and orchid (8) to
+/// violet (9), DOP853 magenta.
 pub const DOPRI5: Color32 = Color32::from_rgb(40, 130, 210);
 pub const TSIT5: Color32 = Color32::from_rgb(175, 135, 0);
 pub const VERN6: Color32 = Color32::from_rgb(165, 105, 60);
@@ -176,7 +177,159 @@ pub fn problem_lines(load_error: Option<&str>, method_errors: &[String]) -> Vec<
 /// equation, the methods that loaded).
 pub fn problems_ui(ui: &mut egui::Ui, load_error: Option<&str>, method_errors: &[String]) {
     for line in problem_lines(load_error, method_errors) {
-        ui.colored_label(DIVERGED, egui::RichText::new(line).small());
+        ui.colored_label(text_color(ui, DIVERGED), egui::RichText::new(line).small());
+    }
+}
+
+/// WCAG 2 relative luminance of an sRGB colour (0 black … 1 white).
+pub fn relative_luminance(c: Color32) -> f32 {
+    let lin = |v: u8| {
+        let s = f32::from(v) / 255.0;
+        if s <= 0.04045 {
+            s / 12.92
+        } else {
+            ((s + 0.055) / 1.055).powf(2.4)
+        }
+    };
+    0.2126 * lin(c.r()) + 0.7152 * lin(c.g()) + 0.0722 * lin(c.b())
+}
+
+/// WCAG 2 contrast ratio of two opaque colours, 1 … 21.
+pub fn contrast_ratio(a: Color32, b: Color32) -> f32 {
+    let (la, lb) = (relative_luminance(a), relative_luminance(b));
+    (la.max(lb) + 0.05) / (la.min(lb) + 0.05)
+}
+
+/// The contrast WCAG asks of text (AA, normal size); control labels are held to it.
+pub const MIN_TEXT_CONTRAST: f32 = 4.5;
+
+/// `color`, lightened on a dark `background` or darkened on a light one just enough to reach
+/// [`MIN_TEXT_CONTRAST`]: a label keeps its method's hue (the legend still matches the line)
+/// and stays readable on both themes. Colours that already pass are returned unchanged.
+pub fn readable_on(color: Color32, background: Color32) -> Color32 {
+    if contrast_ratio(color, background) >= MIN_TEXT_CONTRAST {
+        return color;
+    }
+    let toward = if relative_luminance(background) < 0.18 {
+        Color32::WHITE
+    } else {
+        Color32::BLACK
+    };
+    let mix = |t: f32| {
+        let m = |a: u8, b: u8| (f32::from(a) + (f32::from(b) - f32::from(a)) * t).round() as u8;
+        Color32::from_rgb(
+            m(color.r(), toward.r()),
+            m(color.g(), toward.g()),
+            m(color.b(), toward.b()),
+        )
+    };
+    // the ratio grows monotonically with t: bisect for the smallest mix that passes
+    let (mut lo, mut hi) = (0.0_f32, 1.0_f32);
+    for _ in 0..16 {
+        let mid = 0.5 * (lo + hi);
+        if contrast_ratio(mix(mid), background) >= MIN_TEXT_CONTRAST {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    mix(hi)
+}
+
+/// Text in `color` (a method's colour) on a slide — a control's label, a legend, a readout,
+/// a label inside a plot — readable on both surfaces text sits on there: the slide's
+/// background and the plots' (egui's `extreme_bg_color`).
+pub fn text_color(ui: &egui::Ui, color: Color32) -> Color32 {
+    text_color_in(ui.visuals(), color)
+}
+
+/// [`text_color`] where the `Ui` is borrowed (inside a plot's closure).
+pub fn text_color_in(visuals: &egui::Visuals, color: Color32) -> Color32 {
+    readable_on(
+        readable_on(color, visuals.panel_fill),
+        visuals.extreme_bg_color,
+    )
+}
+
+/// As [`text_color`], for a selected label: on the selection fill blended over the background.
+pub fn selected_label_color(ui: &egui::Ui, color: Color32) -> Color32 {
+    let v = ui.visuals();
+    readable_on(color, over(v.selection.bg_fill, v.panel_fill))
+}
+
+/// `top` (premultiplied, possibly translucent) composited over the opaque `bottom`.
+fn over(top: Color32, bottom: Color32) -> Color32 {
+    let a = f32::from(top.a()) / 255.0;
+    let c = |t: u8, b: u8| (f32::from(t) + f32::from(b) * (1.0 - a)).round().min(255.0) as u8;
+    Color32::from_rgb(
+        c(top.r(), bottom.r()),
+        c(top.g(), bottom.g()),
+        c(top.b(), bottom.b()),
+    )
+}
+
+#[cfg(test)]
+mod contrast_tests {
+    use super::*;
+
+    #[test]
+    fn wcag_ratios_of_known_pairs() {
+        assert!((contrast_ratio(Color32::WHITE, Color32::BLACK) - 21.0).abs() < 1e-3);
+        assert!((contrast_ratio(Color32::GRAY, Color32::GRAY) - 1.0).abs() < 1e-6);
+        // #767676 on white is the classic just-passing grey, 4.54:1
+        let g = Color32::from_gray(0x76);
+        assert!((contrast_ratio(g, Color32::WHITE) - 4.54).abs() < 0.01);
+    }
+
+    #[test]
+    fn every_method_colour_is_made_readable_on_both_slide_backgrounds() {
+        let backgrounds = [
+            Color32::from_rgb(0x16, 0x19, 0x21),
+            Color32::from_rgb(0xfb, 0xf9, 0xf4),
+        ];
+        let colours = [
+            EXACT,
+            EULER,
+            MIDPOINT,
+            RK4,
+            HEUN,
+            RK4_TYPO,
+            DOPRI,
+            SYMPLECTIC_EULER,
+            DOPRI5,
+            TSIT5,
+            VERN6,
+            VERN7,
+            VERN8,
+            VERN9,
+            DOP853,
+        ];
+        let mut changed = 0;
+        for bg in backgrounds {
+            for c in colours {
+                let r = readable_on(c, bg);
+                assert!(
+                    contrast_ratio(r, bg) >= MIN_TEXT_CONTRAST,
+                    "{c:?} on {bg:?}"
+                );
+                // no more change than needed: a colour that passes is kept
+                if contrast_ratio(c, bg) >= MIN_TEXT_CONTRAST {
+                    assert_eq!(r, c);
+                } else {
+                    changed += 1;
+                    // and the hue survives: the dominant channel stays dominant
+                    let dominant = |c: Color32| {
+                        let v = [c.r(), c.g(), c.b()];
+                        (0..3).max_by_key(|&i| v[i]).unwrap()
+                    };
+                    if c.r().max(c.g()).max(c.b()) - c.r().min(c.g()).min(c.b()) > 60 {
+                        assert_eq!(dominant(r), dominant(c), "{c:?} → {r:?}");
+                    }
+                }
+            }
+        }
+        // Midpoint's blue on the dark slide and the warm colours on the light one do not pass
+        assert!(changed >= 3, "{changed}");
     }
 }
 
@@ -184,22 +337,8 @@ pub fn problems_ui(ui: &mut egui::Ui, load_error: Option<&str>, method_errors: &
 mod tests {
     use super::*;
 
-    /// WCAG relative luminance of an sRGB colour.
-    fn luminance(c: Color32) -> f64 {
-        let lin = |v: u8| {
-            let v = f64::from(v) / 255.0;
-            if v <= 0.040_45 {
-                v / 12.92
-            } else {
-                ((v + 0.055) / 1.055).powf(2.4)
-            }
-        };
-        0.2126 * lin(c.r()) + 0.7152 * lin(c.g()) + 0.0722 * lin(c.b())
-    }
-
-    fn contrast(a: Color32, b: Color32) -> f64 {
-        let (la, lb) = (luminance(a), luminance(b));
-        (la.max(lb) + 0.05) / (la.min(lb) + 0.05)
+    fn contrast(a: Color32, b: Color32) -> f32 {
+        contrast_ratio(a, b)
     }
 
     #[test]

@@ -104,7 +104,7 @@ impl SlideWidget for Taylor {
             ui.label(egui::RichText::new(format!("{} ≈", s.function.name())).strong());
             for n in 1..=s.order.min(6) {
                 ui.colored_label(
-                    order_color(n),
+                    style::text_color(ui, order_color(n)),
                     egui::RichText::new(format!("order {n}")).strong(),
                 );
             }

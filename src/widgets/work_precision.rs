@@ -347,7 +347,9 @@ impl SlideWidget for WorkPrecision {
             self.methods.toggles_ui(ui);
             ui.checkbox(
                 &mut self.spec.rk5,
-                egui::RichText::new("RK5").color(style::DOPRI).strong(),
+                egui::RichText::new("RK5")
+                    .color(style::text_color(ui, style::DOPRI))
+                    .strong(),
             );
             if self.busy() {
                 ui.spinner();
@@ -379,8 +381,9 @@ impl SlideWidget for WorkPrecision {
             for c in &self.results {
                 // whole entries move to the next row; none breaks inside
                 let txt = format!("{} {}", c.name, fmt_num(c.best_error()));
+                let color = style::text_color(ui, c.color);
                 ui.add(
-                    egui::Label::new(egui::RichText::new(txt).strong().color(c.color))
+                    egui::Label::new(egui::RichText::new(txt).strong().color(color))
                         .wrap_mode(egui::TextWrapMode::Extend),
                 );
             }

@@ -1,0 +1,367 @@
+//! Scene mode in the app: owns the water scene's simulation and steps it, takes the mouse
+//! (orbit, zoom, the flee point), reloads `scenes/*.ron` through [`LiveFile`] and `shaders/`
+//! through the renderer (one folder watcher for both, polled on the UI thread), holds the
+//! quality controller, and shows the renderer's image as an egui texture. The renderer only
+//! draws what it is given. Its teaching panel is in [`super::scene_panel`].
+
+use std::collections::VecDeque;
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use anyhow::Result;
+
+use crate::reload::{DirWatcher, LiveFile, Reloaded};
+use crate::render::gpu::UncapturedErrors;
+use crate::render::{RenderSettings, Renderer};
+use crate::scene::{self, FrameSnapshot, QualityController, Scene, SceneSim};
+
+const OUTPUT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+
+/// The texture the renderer draws into, registered with egui once (and updated in place when
+/// the size changes, so egui's texture list does not grow).
+struct Output {
+    size: (u32, u32),
+    _texture: wgpu::Texture,
+    view: wgpu::TextureView,
+    id: egui::TextureId,
+}
+
+pub struct SceneMode {
+    pub(super) renderer: Renderer,
+    pub(super) sim: SceneSim,
+    /// the scene file, last good version and newest error
+    scene_file: LiveFile<Scene>,
+    watcher: Option<DirWatcher>,
+    device_errors: UncapturedErrors,
+    pub settings: RenderSettings,
+    pub(super) quality: QualityController,
+    pub paused: bool,
+    pub(super) step_once: bool,
+    pub(super) show_frame_time: bool,
+    /// the teaching panel as a floating window over the scene (a "controls" button opens it);
+    /// a presenter view that shows the panel on its own screen sets `controls_button` false
+    pub controls_open: bool,
+    pub controls_button: bool,
+    pub(super) selected_material: usize,
+    output: Option<Output>,
+    snapshot: Option<FrameSnapshot>,
+    last_instant: Option<Instant>,
+    pub(super) cpu_ms: VecDeque<f32>,
+    pub(super) interval_ms: VecDeque<f32>,
+    /// the interval before the newest drawn frame, until [`Self::take_drawn_frame`] reads it
+    drawn: Option<f32>,
+}
+
+impl SceneMode {
+    /// Loads the scene (an error here is fatal: there is no last good scene yet), builds the
+    /// renderer and starts watching `scenes/` and `shaders/` (`wake` is called on a change).
+    pub fn new(
+        render_state: &egui_wgpu::RenderState,
+        scene_path: &Path,
+        wake: impl Fn() + Send + 'static,
+    ) -> Result<Self> {
+        let root = scene_path
+            .parent()
+            .and_then(Path::parent)
+            .unwrap_or(Path::new(""));
+        let shader_dir = root.join(crate::render::SHADER_DIR);
+        let scene_file = LiveFile::open(scene_path, scene::parse_scene);
+        let scene = match (scene_file.value(), scene_file.error()) {
+            (Some(s), _) => s.clone(),
+            (None, Some(d)) => return Err(d.clone().into()),
+            (None, None) => anyhow::bail!("{}: no scene", scene_path.display()),
+        };
+        let renderer = Renderer::new(
+            &render_state.device,
+            &render_state.queue,
+            &shader_dir,
+            &scene,
+            OUTPUT_FORMAT,
+        )?;
+        let scenes_dir = scene_path.parent().unwrap_or(Path::new("."));
+        let watcher = DirWatcher::new(&[&shader_dir, scenes_dir], Duration::from_millis(80), wake)
+            .map_err(|e| tracing::warn!("not watching shaders/scenes: {e}"))
+            .ok();
+        Ok(Self {
+            renderer,
+            quality: QualityController::new(scene.quality),
+            sim: SceneSim::new(scene),
+            scene_file,
+            watcher,
+            device_errors: UncapturedErrors::install(&render_state.device),
+            settings: RenderSettings::default(),
+            paused: false,
+            step_once: false,
+            show_frame_time: true,
+            controls_open: false,
+            controls_button: true,
+            selected_material: 0,
+            output: None,
+            snapshot: None,
+            last_instant: None,
+            cpu_ms: VecDeque::new(),
+            interval_ms: VecDeque::new(),
+            drawn: None,
+        })
+    }
+
+    /// Applies file changes: shaders rebuild (old pipelines kept on error), the scene reloads
+    /// through its [`LiveFile`] (last good kept on error; camera and time kept on success).
+    fn poll_reload(&mut self) {
+        let Some(w) = &self.watcher else { return };
+        let changed = w.poll();
+        if changed.is_empty() {
+            return;
+        }
+        self.apply_changes(&changed);
+    }
+
+    /// What a batch of changed paths does (public for tests that drive reloads directly).
+    pub fn apply_changes(&mut self, changed: &[PathBuf]) {
+        let shaders: Vec<PathBuf> = changed
+            .iter()
+            .filter(|p| p.extension().is_some_and(|e| e == "wgsl"))
+            .cloned()
+            .collect();
+        if !shaders.is_empty() {
+            self.renderer.reload_shaders(&shaders);
+        }
+        if self.scene_file.on_changes(changed) == Reloaded::Updated
+            && let Some(s) = self.scene_file.value()
+        {
+            let s = s.clone();
+            self.renderer.set_scene(&s);
+            self.quality.set_mode(s.quality);
+            self.sim.replace_scene(s);
+        }
+    }
+
+    /// The reload problems: the scene file's, then the shaders'.
+    pub fn errors(&self) -> Vec<String> {
+        let mut v: Vec<String> = self
+            .scene_file
+            .error()
+            .iter()
+            .map(|d| d.to_string())
+            .collect();
+        v.extend(self.renderer.shader_errors().iter().map(|d| d.to_string()));
+        v
+    }
+
+    /// Once per drawn scene frame: the wall time since the previous one, ms (for
+    /// `--frame-stats`, which labels it `scene`). `None` when no frame was drawn since.
+    pub fn take_drawn_frame(&mut self) -> Option<f32> {
+        self.drawn.take()
+    }
+
+    /// Steps the simulation by the real time since the last frame (or one step when asked).
+    fn step(&mut self) -> f32 {
+        let now = Instant::now();
+        let dt = self.last_instant.map_or(0.0, |t| (now - t).as_secs_f64());
+        self.last_instant = Some(now);
+        if !self.paused {
+            self.sim.step(dt);
+        } else if self.step_once {
+            self.sim.step_once();
+        }
+        self.step_once = false;
+        dt as f32 * 1e3
+    }
+
+    /// Orbit on drag, zoom on scroll, and a click on the water puts the flee point there,
+    /// half-way down the water column.
+    fn input(&mut self, ui: &egui::Ui, response: &egui::Response, rect: egui::Rect) {
+        if response.dragged() {
+            let d = response.drag_delta();
+            self.sim.camera.orbit(d.x, d.y);
+        }
+        let aspect = rect.width() / rect.height().max(1.0);
+        if response.clicked()
+            && let Some(pos) = response.interact_pointer_pos()
+        {
+            let ndc = glam::Vec2::new(
+                2.0 * (pos.x - rect.left()) / rect.width() - 1.0,
+                1.0 - 2.0 * (pos.y - rect.top()) / rect.height(),
+            );
+            let level = self.sim.scene.water.level;
+            let mid = 0.5 * (level - self.sim.scene.seabed_depth());
+            if let Some(p) = self.sim.camera.pose().pick_plane(ndc, aspect, mid) {
+                self.sim.flee_point = Some(p);
+            }
+        }
+        if response.hovered() {
+            let scroll = ui.input(|i| i.smooth_scroll_delta.y);
+            if scroll != 0.0 {
+                self.sim.camera.zoom(scroll / 50.0);
+            }
+        }
+    }
+
+    /// Draws the scene filling the available rect; drag orbits, scroll zooms.
+    pub fn ui(&mut self, ui: &mut egui::Ui, render_state: &egui_wgpu::RenderState) {
+        self.poll_reload();
+        let interval = self.step();
+        push(&mut self.interval_ms, interval);
+        if self.last_instant.is_some() && interval > 0.0 {
+            self.quality.observe(interval);
+            self.drawn = Some(interval);
+        }
+        (self.settings.render_scale, self.settings.fish_detail) = self.quality.settings();
+
+        let (rect, response) =
+            ui.allocate_exact_size(ui.available_size(), egui::Sense::click_and_drag());
+        self.input(ui, &response, rect);
+        let ppp = ui.ctx().pixels_per_point();
+        let size = (
+            (rect.width() * ppp).round().max(1.0) as u32,
+            (rect.height() * ppp).round().max(1.0) as u32,
+        );
+        self.ensure_output(render_state, size);
+        let t0 = Instant::now();
+        let snap = self.snapshot.get_or_insert_with(|| self.sim.snapshot());
+        self.sim.snapshot_into(snap);
+        if let Some(out) = &self.output {
+            self.renderer
+                .render(&self.sim.scene, snap, &self.settings, &out.view, size);
+            let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
+            ui.painter().image(out.id, rect, uv, egui::Color32::WHITE);
+        }
+        push(&mut self.cpu_ms, t0.elapsed().as_secs_f32() * 1e3);
+        self.overlay_ui(ui, rect);
+        if self.controls_button {
+            self.controls_window_ui(ui, rect);
+        }
+        if !self.paused {
+            ui.ctx().request_repaint();
+        }
+    }
+
+    /// The flee point's ring, the frame-time line and the reload errors over the scene.
+    fn overlay_ui(&mut self, ui: &egui::Ui, rect: egui::Rect) {
+        let painter = ui.painter_at(rect);
+        let aspect = rect.width() / rect.height().max(1.0);
+        if let Some(p) = self.sim.flee_point
+            && let Some(ndc) = self.sim.camera.pose().project(p, aspect)
+        {
+            let at = egui::pos2(
+                rect.left() + (ndc.x + 1.0) * 0.5 * rect.width(),
+                rect.top() + (1.0 - ndc.y) * 0.5 * rect.height(),
+            );
+            painter.circle_stroke(at, 10.0, egui::Stroke::new(2.0, egui::Color32::YELLOW));
+            painter.circle_filled(at, 2.5, egui::Color32::YELLOW);
+        }
+        if self.show_frame_time {
+            let info = self.renderer.frame_info();
+            let text = format!(
+                "frame {:.1} ms · render CPU {:.1} ms · {}×{} px · t = {:.2} s · {} fish · {}",
+                mean(&self.interval_ms),
+                mean(&self.cpu_ms),
+                info.render_size.0,
+                info.render_size.1,
+                self.sim.time_secs(),
+                self.sim.fish_count(),
+                self.sim.integrator().name()
+            );
+            painter.text(
+                rect.left_top() + egui::vec2(8.0, 8.0),
+                egui::Align2::LEFT_TOP,
+                text,
+                egui::FontId::monospace(13.0),
+                egui::Color32::WHITE,
+            );
+        }
+        let mut errors = self.errors();
+        errors.extend(self.device_errors.take());
+        for (i, e) in errors.iter().enumerate() {
+            let first = e.lines().take(3).collect::<Vec<_>>().join("\n");
+            painter.text(
+                rect.left_bottom() + egui::vec2(8.0, -8.0 - 48.0 * i as f32),
+                egui::Align2::LEFT_BOTTOM,
+                first,
+                egui::FontId::monospace(12.0),
+                egui::Color32::from_rgb(255, 120, 100),
+            );
+        }
+    }
+
+    /// The "controls" button and the floating panel it opens (when no presenter view shows
+    /// the panel).
+    fn controls_window_ui(&mut self, ui: &mut egui::Ui, rect: egui::Rect) {
+        let button = egui::Rect::from_min_size(
+            rect.right_top() + egui::vec2(-88.0, 8.0),
+            egui::vec2(80.0, 24.0),
+        );
+        if ui
+            .put(button, egui::Button::new("controls"))
+            .on_hover_text("scene controls")
+            .clicked()
+        {
+            self.controls_open = !self.controls_open;
+        }
+        let mut open = self.controls_open;
+        egui::Window::new("Scene controls")
+            .open(&mut open)
+            .default_pos(rect.right_top() + egui::vec2(-340.0, 40.0))
+            .default_width(320.0)
+            .vscroll(true)
+            .show(ui.ctx(), |ui| self.controls_ui(ui));
+        self.controls_open &= open;
+    }
+
+    fn ensure_output(&mut self, rs: &egui_wgpu::RenderState, size: (u32, u32)) {
+        if self.output.as_ref().is_some_and(|o| o.size == size) {
+            return;
+        }
+        let texture = rs.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("scene view"),
+            size: wgpu::Extent3d {
+                width: size.0,
+                height: size.1,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: OUTPUT_FORMAT,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        });
+        let view = texture.create_view(&Default::default());
+        let mut egui_renderer = rs.renderer.write();
+        let id = match &self.output {
+            Some(o) => {
+                egui_renderer.update_egui_texture_from_wgpu_texture(
+                    &rs.device,
+                    &view,
+                    wgpu::FilterMode::Linear,
+                    o.id,
+                );
+                o.id
+            }
+            None => {
+                egui_renderer.register_native_texture(&rs.device, &view, wgpu::FilterMode::Linear)
+            }
+        };
+        self.output = Some(Output {
+            size,
+            _texture: texture,
+            view,
+            id,
+        });
+    }
+}
+
+pub(super) fn push(q: &mut VecDeque<f32>, v: f32) {
+    q.push_back(v);
+    if q.len() > 60 {
+        q.pop_front();
+    }
+}
+
+pub(super) fn mean(q: &VecDeque<f32>) -> f32 {
+    if q.is_empty() {
+        0.0
+    } else {
+        q.iter().sum::<f32>() / q.len() as f32
+    }
+}

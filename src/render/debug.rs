@@ -1,0 +1,47 @@
+//! Teaching views (debug.wgsl): the sun's shadow map as grey levels and the environment cube
+//! unfolded with its roughness mips, drawn straight into the display target.
+
+use super::pipeline::{Ctx, FLOAT, Layout, PipelineDesc, Technique, sampler, texture, uniform};
+use super::tonemap::PostParams;
+
+/// Group 0 of the debug views: parameters, the shadow map, the environment cube, a sampler.
+pub fn layout(device: &wgpu::Device) -> Layout {
+    use wgpu::{TextureSampleType as T, TextureViewDimension as D};
+    let vf = wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT;
+    Layout::new(
+        device,
+        "debug",
+        &[
+            uniform::<PostParams>(0, vf),
+            texture(1, D::D2, T::Depth),
+            texture(2, D::Cube, FLOAT),
+            sampler(3, wgpu::SamplerBindingType::Filtering),
+        ],
+    )
+}
+
+pub struct DebugPipeline {
+    pub pipeline: wgpu::RenderPipeline,
+}
+
+impl Technique for DebugPipeline {
+    const SHADER: &'static str = "debug.wgsl";
+
+    fn build(ctx: &Ctx, m: &wgpu::ShaderModule) -> Self {
+        Self {
+            pipeline: ctx.pipeline(
+                m,
+                PipelineDesc {
+                    label: "debug",
+                    groups: &[&ctx.layouts.debug],
+                    vs: "vs_fullscreen",
+                    fs: Some("fs_main"),
+                    buffers: &[],
+                    color: Some(ctx.output_format),
+                    depth: None,
+                    cull: None,
+                },
+            ),
+        }
+    }
+}

@@ -1,0 +1,387 @@
+//! How a technique's pipelines are made from its WGSL file, the same way for the renderer, its
+//! hot reload and `lectern check`: naga parses and validates the (include-expanded) source, the
+//! technique's builder describes each pipeline against the renderer's real bind-group and
+//! vertex layouts, [`super::interface`] compares each description with the shader (a mismatch
+//! is reported at the shader's own line), and wgpu creates the module and pipelines inside a
+//! validation error scope (anything else wgpu rejects is reported for the file).
+
+use std::cell::RefCell;
+use std::path::{Path, PathBuf};
+
+use crate::diag::Diagnostic;
+
+use super::shaders::{self, Checked};
+use super::{debug, fish, frame, interface, pbr, shadow, sky, tonemap, water};
+
+pub const HDR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+pub const CUBE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+
+/// A bind group layout and the entries it was made from (wgpu does not give them back, and the
+/// interface check compares them with the shader's bindings).
+pub struct Layout {
+    pub label: &'static str,
+    pub layout: wgpu::BindGroupLayout,
+    pub entries: Vec<wgpu::BindGroupLayoutEntry>,
+}
+
+impl Layout {
+    pub fn new(
+        device: &wgpu::Device,
+        label: &'static str,
+        entries: &[wgpu::BindGroupLayoutEntry],
+    ) -> Self {
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some(label),
+            entries,
+        });
+        Self {
+            label,
+            layout,
+            entries: entries.to_vec(),
+        }
+    }
+}
+
+/// A uniform buffer of exactly `T`'s size (wgpu then checks the shader's struct fits it).
+pub fn uniform<T>(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Uniform,
+            has_dynamic_offset: false,
+            min_binding_size: wgpu::BufferSize::new(std::mem::size_of::<T>() as u64),
+        },
+        count: None,
+    }
+}
+
+pub fn texture(
+    binding: u32,
+    view_dimension: wgpu::TextureViewDimension,
+    sample_type: wgpu::TextureSampleType,
+) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Texture {
+            sample_type,
+            view_dimension,
+            multisampled: false,
+        },
+        count: None,
+    }
+}
+
+pub fn sampler(binding: u32, ty: wgpu::SamplerBindingType) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Sampler(ty),
+        count: None,
+    }
+}
+
+pub const FLOAT: wgpu::TextureSampleType = wgpu::TextureSampleType::Float { filterable: true };
+
+/// Every bind group layout of the renderer, made once; each is defined beside the technique
+/// that owns it.
+pub struct Layouts {
+    pub empty: Layout,
+    pub frame: Layout,
+    pub shadow_frame: Layout,
+    pub material: Layout,
+    pub object: Layout,
+    pub water_inputs: Layout,
+    pub sky_params: Layout,
+    pub prefilter: Layout,
+    pub tonemap: Layout,
+    pub debug: Layout,
+}
+
+impl Layouts {
+    pub fn new(device: &wgpu::Device) -> Self {
+        Self {
+            empty: Layout::new(device, "empty", &[]),
+            frame: frame::frame_layout(device),
+            shadow_frame: frame::shadow_frame_layout(device),
+            material: pbr::material_layout(device),
+            object: pbr::object_layout(device),
+            water_inputs: water::inputs_layout(device),
+            sky_params: sky::params_layout(device),
+            prefilter: sky::prefilter_layout(device),
+            tonemap: tonemap::layout(device),
+            debug: debug::layout(device),
+        }
+    }
+}
+
+/// Everything a technique's builder needs besides its shader module.
+pub struct Ctx<'a> {
+    pub device: &'a wgpu::Device,
+    pub layouts: &'a Layouts,
+    pub output_format: wgpu::TextureFormat,
+    /// the checked shader being built, for the interface check
+    shader: &'a Checked,
+    /// interface mismatches found while building
+    problems: RefCell<Vec<Diagnostic>>,
+}
+
+/// Depth state of a pipeline: write, compare, bias.
+pub type Depth = (bool, wgpu::CompareFunction, wgpu::DepthBiasState);
+
+pub const NO_BIAS: wgpu::DepthBiasState = wgpu::DepthBiasState {
+    constant: 0,
+    slope_scale: 0.0,
+    clamp: 0.0,
+};
+
+pub const OPAQUE_DEPTH: Option<Depth> = Some((true, wgpu::CompareFunction::Less, NO_BIAS));
+
+/// One render pipeline as a technique describes it.
+pub struct PipelineDesc<'a> {
+    pub label: &'static str,
+    /// bind groups 0, 1, … in order
+    pub groups: &'a [&'a Layout],
+    pub vs: &'static str,
+    pub fs: Option<&'static str>,
+    pub buffers: &'a [Option<wgpu::VertexBufferLayout<'a>>],
+    pub color: Option<wgpu::TextureFormat>,
+    pub depth: Option<Depth>,
+    pub cull: Option<wgpu::Face>,
+}
+
+impl Ctx<'_> {
+    /// Checks `d` against the shader, then creates it (inside the caller's error scope).
+    pub fn pipeline(&self, module: &wgpu::ShaderModule, d: PipelineDesc) -> wgpu::RenderPipeline {
+        self.problems
+            .borrow_mut()
+            .extend(interface::check(self.shader, &d));
+        let groups: Vec<Option<&wgpu::BindGroupLayout>> =
+            d.groups.iter().map(|g| Some(&g.layout)).collect();
+        let layout = self
+            .device
+            .create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some(d.label),
+                bind_group_layouts: &groups,
+                immediate_size: 0,
+            });
+        let targets = [d.color.map(|format| wgpu::ColorTargetState {
+            format,
+            blend: None,
+            write_mask: wgpu::ColorWrites::ALL,
+        })];
+        self.device
+            .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(d.label),
+                layout: Some(&layout),
+                vertex: wgpu::VertexState {
+                    module,
+                    entry_point: Some(d.vs),
+                    compilation_options: Default::default(),
+                    buffers: d.buffers,
+                },
+                fragment: d.fs.map(|fs| wgpu::FragmentState {
+                    module,
+                    entry_point: Some(fs),
+                    compilation_options: Default::default(),
+                    targets: &targets,
+                }),
+                primitive: wgpu::PrimitiveState {
+                    cull_mode: d.cull,
+                    ..Default::default()
+                },
+                depth_stencil: d
+                    .depth
+                    .map(|(write, compare, bias)| wgpu::DepthStencilState {
+                        format: DEPTH_FORMAT,
+                        depth_write_enabled: Some(write),
+                        depth_compare: Some(compare),
+                        stencil: Default::default(),
+                        bias,
+                    }),
+                multisample: Default::default(),
+                multiview_mask: None,
+                cache: None,
+            })
+    }
+}
+
+/// A technique's pipelines, built from one WGSL file (and its includes).
+pub trait Technique: Sized {
+    /// The file in the shader folder.
+    const SHADER: &'static str;
+    fn build(ctx: &Ctx, module: &wgpu::ShaderModule) -> Self;
+}
+
+/// What the builders share across techniques and rebuilds.
+pub struct BuildEnv<'a> {
+    pub device: &'a wgpu::Device,
+    pub layouts: &'a Layouts,
+    pub output_format: wgpu::TextureFormat,
+}
+
+/// Builds technique `T` from `path`: naga, the interface check, then wgpu inside an error
+/// scope. Every problem found, each at its file:line:col where it has one.
+pub fn build<T: Technique>(env: &BuildEnv, path: &Path) -> Result<T, Vec<Diagnostic>> {
+    let shader = shaders::load_checked(path).map_err(|d| vec![d])?;
+    let ctx = Ctx {
+        device: env.device,
+        layouts: env.layouts,
+        output_format: env.output_format,
+        shader: &shader,
+        problems: RefCell::new(Vec::new()),
+    };
+    let scope = env.device.push_error_scope(wgpu::ErrorFilter::Validation);
+    let module = env
+        .device
+        .create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some(&path.display().to_string()),
+            source: wgpu::ShaderSource::Wgsl(shader.src.text.as_str().into()),
+        });
+    let built = T::build(&ctx, &module);
+    let scoped = pollster::block_on(scope.pop());
+    let problems = ctx.problems.into_inner();
+    if !problems.is_empty() {
+        // our own findings carry positions; wgpu's message for the same fault would not
+        return Err(problems);
+    }
+    match scoped {
+        None => Ok(built),
+        Some(e) => Err(vec![Diagnostic::whole_file(
+            path,
+            format!("pipeline creation failed: {e}"),
+        )]),
+    }
+}
+
+/// A technique in use: its pipelines, the files they were built from, and the problems of the
+/// newest attempt (the previous pipelines stay in use meanwhile).
+pub struct Live<T> {
+    pub current: T,
+    /// bumped on every successful rebuild
+    pub generation: u64,
+    path: PathBuf,
+    files: Vec<PathBuf>,
+    errors: Vec<Diagnostic>,
+}
+
+impl<T: Technique> Live<T> {
+    /// The first build must succeed: there is nothing to fall back to.
+    pub fn new(env: &BuildEnv, dir: &Path) -> Result<Self, Diagnostic> {
+        let path = dir.join(T::SHADER);
+        let current = build::<T>(env, &path).map_err(first)?;
+        Ok(Self {
+            current,
+            generation: 0,
+            files: files_of(&path),
+            path,
+            errors: Vec::new(),
+        })
+    }
+
+    /// Rebuilds when any of `changed` is this technique's file or one of its includes.
+    pub fn reload(&mut self, env: &BuildEnv, changed: &[PathBuf]) -> bool {
+        let same = |a: &Path, b: &Path| a.file_name() == b.file_name();
+        if !changed
+            .iter()
+            .any(|c| self.files.iter().any(|f| same(c, f)))
+        {
+            return false;
+        }
+        self.files = files_of(&self.path);
+        match build::<T>(env, &self.path) {
+            Ok(t) => {
+                self.current = t;
+                self.generation += 1;
+                self.errors.clear();
+            }
+            Err(ds) => {
+                for d in &ds {
+                    tracing::warn!("{d}");
+                }
+                self.errors = ds;
+            }
+        }
+        true
+    }
+
+    pub fn errors(&self) -> &[Diagnostic] {
+        &self.errors
+    }
+}
+
+fn first(mut ds: Vec<Diagnostic>) -> Diagnostic {
+    ds.truncate(1);
+    ds.pop()
+        .unwrap_or_else(|| Diagnostic::whole_file("shaders", "pipeline creation failed"))
+}
+
+/// The files a shader is made of (itself and its includes); itself when it cannot be read.
+pub fn files_of(path: &Path) -> Vec<PathBuf> {
+    shaders::load(path)
+        .map(|s| s.files)
+        .unwrap_or_else(|_| vec![path.to_path_buf()])
+}
+
+/// Declares the renderer's techniques once: the [`Passes`] holding each one live, and
+/// [`check_techniques`] building each one for `lectern check`.
+macro_rules! techniques {
+    ($($field:ident: $ty:ty),* $(,)?) => {
+        /// Every technique's pipelines, live (hot reload keeps the old ones on an error).
+        pub struct Passes {
+            $(pub $field: Live<$ty>,)*
+        }
+
+        impl Passes {
+            pub fn new(env: &BuildEnv, dir: &Path) -> Result<Self, Diagnostic> {
+                Ok(Self { $($field: Live::new(env, dir)?,)* })
+            }
+
+            /// Rebuilds the techniques that use any of `changed`; whether any did.
+            pub fn reload(&mut self, env: &BuildEnv, changed: &[PathBuf]) -> bool {
+                let mut any = false;
+                $(any |= self.$field.reload(env, changed);)*
+                any
+            }
+
+            pub fn errors(&self) -> Vec<&Diagnostic> {
+                let mut v = Vec::new();
+                $(v.extend(self.$field.errors());)*
+                v
+            }
+        }
+
+        /// The shader file of each technique, in build order.
+        pub const TECHNIQUE_SHADERS: &[&str] = &[$(<$ty as Technique>::SHADER,)*];
+
+        /// Builds, in `dir`, each technique whose files satisfy `wanted`; the problems of each.
+        pub fn check_techniques(
+            env: &BuildEnv,
+            dir: &Path,
+            wanted: &dyn Fn(&[PathBuf]) -> bool,
+        ) -> Vec<(PathBuf, Vec<Diagnostic>)> {
+            let mut out = Vec::new();
+            $(
+                let path = dir.join(<$ty as Technique>::SHADER);
+                if path.exists() && wanted(&files_of(&path)) {
+                    let problems = build::<$ty>(env, &path).err().unwrap_or_default();
+                    out.push((path, problems));
+                }
+            )*
+            out
+        }
+    };
+}
+
+techniques! {
+    sky: sky::SkyPipelines,
+    prefilter: sky::PrefilterPipeline,
+    pbr: pbr::PbrPipeline,
+    fish: fish::FishPipelines,
+    shadow: shadow::ShadowPipeline,
+    water: water::WaterPipeline,
+    tonemap: tonemap::TonemapPipeline,
+    debug: debug::DebugPipeline,
+}
