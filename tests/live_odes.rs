@@ -154,11 +154,10 @@ fn parse_csv(text: &str) -> Vec<(String, f64, Vec<f64>)> {
         .collect()
 }
 
-#[test]
-fn export_data_csv_equals_hand_written_loops() {
-    let (dir, path) = project(&format!(
-        "Widget(SlopeField(({FORCED_INLINE}, start: (0.3, 1.1), h: 0.37, t_end: 5.0)))"
-    ));
+/// `export --data` of a one-slide deck with `body` (which must load without widget problems):
+/// the project, the output folder and the files written.
+fn exported(body: &str) -> (tempfile::TempDir, PathBuf, Vec<PathBuf>) {
+    let (dir, path) = project(body);
     let deck = load_deck(&path).unwrap();
     assert!(
         deck.widget_problems.is_empty(),
@@ -167,6 +166,14 @@ fn export_data_csv_equals_hand_written_loops() {
     );
     let out = dir.path().join("out");
     let files = lectern::cli::export_data::write_data(&deck, &out, &Default::default()).unwrap();
+    (dir, out, files)
+}
+
+#[test]
+fn export_data_csv_equals_hand_written_loops() {
+    let (_dir, out, files) = exported(&format!(
+        "Widget(SlopeField(({FORCED_INLINE}, start: (0.3, 1.1), h: 0.37, t_end: 5.0)))"
+    ));
     assert_eq!(files, vec![out.join("slide-01-w1.csv")]);
     let text = std::fs::read_to_string(&files[0]).unwrap();
     assert!(text.starts_with("series,t,x\n"), "{text}");
@@ -187,19 +194,11 @@ fn export_data_csv_equals_hand_written_loops() {
 
 #[test]
 fn export_data_and_check_handle_the_adaptive_pairs() {
-    let (dir, path) = project(&format!(
+    let (_dir, _out, files) = exported(&format!(
         "Widget(SlopeField(({FORCED_INLINE}, start: (0.0, 1.5), h: 0.5, t_end: 4.0, methods: [Rk4, Dop853, Vern9]))),\n\
          Widget(Convergence(({FORCED_INLINE}, t_end: 4.0, h_max: 1.0, levels: 4, methods: [Rk4, Dop853]))),\n\
          Widget(WorkPrecision(({FORCED_INLINE}, t_end: 4.0, levels: 4, methods: [Rk4, Vern9], rk5: false)))"
     ));
-    let deck = load_deck(&path).unwrap();
-    assert!(
-        deck.widget_problems.is_empty(),
-        "{:?}",
-        deck.widget_problems
-    );
-    let out = dir.path().join("out");
-    let files = lectern::cli::export_data::write_data(&deck, &out, &Default::default()).unwrap();
     let names: Vec<_> = files.iter().map(|f| f.file_name().unwrap()).collect();
     assert_eq!(
         names,
