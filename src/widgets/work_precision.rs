@@ -6,174 +6,27 @@
 //! f-evaluations per step and pays off once the error asked for is small enough — DOP853 and
 //! Vern9 overtake RK4 at tight errors, while at loose ones RK4 or a fifth-order pair is cheaper.
 
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::Ordering;
 use std::sync::mpsc::{Receiver, channel};
-use std::time::Instant;
 
 use egui_plot::{Line, MarkerShape, Points};
 
 use std::path::Path as FsPath;
-use std::sync::OnceLock;
 
 use super::convergence::{log_axes_plot, pow10_label, truth};
 use super::live_ode::LiveOde;
-use super::methods::{MethodSet, steps_for};
+use super::methods::MethodSet;
 use super::style::{self, fmt_num};
 use super::{Param, SlideWidget};
 use crate::deck::widgets::WorkPrecisionSpec;
-use crate::ode::problem::Problem;
-use crate::ode::study::max_error;
-use crate::ode::{Adaptive, Method, Scheme, Solution, Tableau, solve_embedded, solve_fixed_final};
+use crate::ode::Scheme;
 
-/// Snapshot tests set this: timings then come from a fixed cost per f-evaluation and the study
-/// runs on the calling thread, so pictures are reproducible. Live, time is measured.
-pub static DETERMINISTIC: AtomicBool = AtomicBool::new(false);
+mod study;
 
-/// Dormand–Prince 5(4)'s fifth-order weights as a fixed-step method (6 stages), from the
-/// numerics core.
-pub fn dopri5_fixed() -> &'static Tableau {
-    static DP: OnceLock<Tableau> = OnceLock::new();
-    DP.get_or_init(|| {
-        let mut t = Tableau::dopri5();
-        t.name = "RK5 (Dormand–Prince)".into();
-        t
-    })
-}
-
-/// The largest step of the fixed-step sweep; run k uses h = H_MAX / 2^k.
-pub const H_MAX: f64 = 1.0;
-/// The loosest tolerance of the adaptive sweep; run k uses rtol = atol = TOL_MAX / 10^k.
-pub const TOL_MAX: f64 = 1e-2;
-/// The tightest tolerance asked of a pair: near round-off, and above the loop's floor
-/// (rtol > 10 machine epsilons).
-pub const TOL_MIN: f64 = 1e-13;
-/// Steps (accepted + rejected) one adaptive run may take: a stiff equation typed live makes a
-/// pair crawl, and the background study must end (the run reports `Failed`, drawn as nothing).
-pub const MAX_ADAPTIVE_STEPS: usize = 1 << 18;
-
-/// How one method is swept.
-#[derive(Debug, Clone, Copy)]
-pub enum Sweep<'a> {
-    /// fixed steps h = H_MAX / 2^k
-    Steps(Scheme<'a>),
-    /// an adaptive pair at each of [`tolerances`]
-    Tolerances(Method),
-}
-
-/// The tolerances of the adaptive runs, one per decade from [`TOL_MAX`] to [`TOL_MIN`]. The
-/// sweep does not depend on `levels` (the step sizes of the fixed-step methods): a pair
-/// always shows its whole curve, from the loose end where low order is cheaper to the tight
-/// end where it overtakes RK4, for a few hundred f-evaluations each.
-pub fn tolerances() -> Vec<f64> {
-    let decades = (TOL_MAX / TOL_MIN).log10().round() as i32;
-    (0..=decades).map(|k| TOL_MAX / 10f64.powi(k)).collect()
-}
-
-/// One run: the step or tolerance, f-evaluations, seconds, global error.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Sample {
-    /// h (fixed step) or rtol = atol (adaptive pair)
-    pub h_or_tol: f64,
-    pub f_evals: usize,
-    pub secs: f64,
-    pub error: f64,
-}
-
-/// Runs `run` (at least three times, and repeated while short so the clock resolves it) and
-/// turns its solution into a sample; in DETERMINISTIC mode time is 50 ns per f-evaluation.
-/// The time is the fastest repeat: the study shares two cores with the slide's software
-/// rendering, and a preempted repeat says nothing about the method (a mean made the seconds
-/// plot zig-zag live).
-fn timed(h_or_tol: f64, exact: &[f64], run: impl Fn() -> Solution) -> Sample {
-    let start = Instant::now();
-    let mut reps = 0;
-    let mut fastest = f64::INFINITY;
-    let sol = loop {
-        let t = Instant::now();
-        let sol = run();
-        fastest = fastest.min(t.elapsed().as_secs_f64());
-        reps += 1;
-        if (reps >= 3 && start.elapsed().as_secs_f64() > 2e-3) || reps >= 50 {
-            break sol;
-        }
-    };
-    let secs = if DETERMINISTIC.load(Ordering::Relaxed) {
-        sol.f_evals as f64 * 50e-9
-    } else {
-        fastest
-    };
-    let error = if sol.finished() {
-        max_error(sol.last().1, exact)
-    } else {
-        f64::INFINITY
-    };
-    Sample {
-        h_or_tol,
-        f_evals: sol.f_evals as usize,
-        secs,
-        error,
-    }
-}
-
-/// The study for one method (pure; runs on any thread) from the problem's t0 to t_end, error
-/// by `ode::study::max_error` against `exact`, the true state at t_end: a fixed-step method
-/// by `ode::solve_fixed_final` at each h, an adaptive pair by `ode::solve_embedded` at each
-/// tolerance.
-pub fn study(
-    spec: &WorkPrecisionSpec,
-    sys: &Problem,
-    exact: &[f64],
-    sweep: Sweep<'_>,
-) -> Vec<Sample> {
-    let (t0, x0, t_end) = (sys.t0, sys.initial.as_slice(), spec.t_end);
-    match sweep {
-        Sweep::Steps(scheme) => (0..spec.levels.clamp(2, 16))
-            .map(|k| {
-                let n = steps_for(t0, t_end, H_MAX / 2f64.powi(k as i32), 1 << 22).max(1);
-                let h = (t_end - t0) / n as f64;
-                timed(h, exact, || {
-                    solve_fixed_final(sys, scheme, t0, x0, h, t_end, 1e12)
-                })
-            })
-            .collect(),
-        Sweep::Tolerances(method) => tolerances()
-            .into_iter()
-            .map(|tol| {
-                let opts = Adaptive {
-                    rtol: tol,
-                    atol: tol,
-                    record: false,
-                    max_steps: MAX_ADAPTIVE_STEPS,
-                    ..Adaptive::default()
-                };
-                timed(tol, exact, || {
-                    solve_embedded(sys, method, t0, x0, t_end, opts)
-                })
-            })
-            .collect(),
-    }
-}
-
-/// One method's curve.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Curve {
-    /// `rk4`, `dop853`, a tableau's stem, `rk5`: CSV series names
-    pub key: String,
-    pub name: String,
-    pub color: egui::Color32,
-    /// swept over the tolerance (an adaptive pair) rather than h
-    pub adaptive: bool,
-    pub samples: Vec<Sample>,
-}
-
-impl Curve {
-    pub fn best_error(&self) -> f64 {
-        self.samples
-            .iter()
-            .map(|s| s.error)
-            .fold(f64::INFINITY, f64::min)
-    }
-}
+pub use study::{
+    Curve, DETERMINISTIC, H_MAX, MAX_ADAPTIVE_STEPS, Sample, Sweep, TOL_MAX, TOL_MIN, dopri5_fixed,
+    study, tolerances,
+};
 
 type Key = (WorkPrecisionSpec, u64, Vec<bool>);
 
@@ -477,58 +330,8 @@ impl SlideWidget for WorkPrecision {
 
 #[cfg(test)]
 mod tests {
+    use super::study::tests::{deck, spec};
     use super::*;
-
-    fn deck() -> &'static FsPath {
-        FsPath::new(concat!(env!("CARGO_MANIFEST_DIR"), "/slides/lecture.ron"))
-    }
-
-    fn spec(levels: usize, methods: &str) -> WorkPrecisionSpec {
-        ron::from_str(&format!(
-            "(ode: File(\"problems/circle.ron\"), t_end: 10.0, levels: {levels}{methods})"
-        ))
-        .unwrap()
-    }
-
-    #[test]
-    fn rk5_is_fifth_order_and_beats_rk4_per_evaluation_at_high_accuracy() {
-        let spec = spec(6, "");
-        let p = Problem::load(deck().with_file_name("problems/circle.ron")).unwrap();
-        let exact = p.exact(10.0).unwrap();
-        let rk5 = study(
-            &spec,
-            &p,
-            &exact,
-            Sweep::Steps(Scheme::Tableau(dopri5_fixed())),
-        );
-        let order = (rk5[2].error / rk5[3].error).log2();
-        assert!((order - 5.0).abs() < 0.3, "{order}");
-        let rk4 = study(&spec, &p, &exact, Sweep::Steps(Scheme::Method(Method::Rk4)));
-        // at ~the same work, RK5's error is smaller
-        assert!(rk5[3].error < rk4[3].error);
-    }
-
-    #[test]
-    fn adaptive_pairs_sweep_the_tolerance_and_meet_it() {
-        let tols = tolerances();
-        assert_eq!((tols.len(), tols[0]), (12, TOL_MAX));
-        assert!((tols[11] / TOL_MIN - 1.0).abs() < 1e-12);
-        // the sweep is the same whatever `levels` (the fixed-step methods' step sizes) says
-        let spec = spec(4, "");
-        let p = Problem::load(deck().with_file_name("problems/circle.ron")).unwrap();
-        let exact = p.exact(10.0).unwrap();
-        let s = study(&spec, &p, &exact, Sweep::Tolerances(Method::Dop853));
-        assert_eq!(s.len(), 12);
-        for w in s.windows(2) {
-            // tighter tolerance: more work, and (away from round-off) a smaller error
-            assert!(w[1].f_evals > w[0].f_evals, "{s:?}");
-        }
-        // the achieved error follows the tolerance (within a few decades over t = 10)
-        for x in &s {
-            assert!(x.error < 1e3 * x.h_or_tol, "{x:?}");
-        }
-        assert!(s[11].error < 1e-11, "{:?}", s[11]);
-    }
 
     #[test]
     fn background_study_delivers_without_blocking_the_frame() {
