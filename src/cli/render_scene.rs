@@ -42,6 +42,9 @@ pub struct Args {
     /// [default: 1, or the scene file's fixed quality]
     #[arg(long)]
     pub fish_detail: Option<f32>,
+    /// Leave the caustics out (to see or time what they add)
+    #[arg(long)]
+    pub no_caustics: bool,
 }
 
 pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
@@ -93,6 +96,7 @@ pub fn run(args: Args) -> Result<()> {
     let t0 = Instant::now();
     let mut h = Headless::new(scene, &args.shaders)?;
     h.settings.debug_view = args.view;
+    h.settings.caustics = !args.no_caustics;
     if let Some(s) = args.render_scale {
         anyhow::ensure!(
             (0.25..=1.0).contains(&s),

@@ -1,4 +1,4 @@
-//! The frame: shadow map → opaque HDR pass (meshes, fish by level of detail, sky background
+//! The frame: shadow map → caustics map (when on) → opaque HDR pass (meshes, fish by level of detail, sky background
 //! last) → copy of the opaque colour → water pass (reads that copy and the depth) → tone map
 //! (scaling the HDR image up to the target) or a debug view into the caller's target. The
 //! window, `render-scene`, tests and the benchmark share it. It only renders: it reads the
@@ -11,6 +11,7 @@ use wgpu::util::DeviceExt;
 use crate::diag::Diagnostic;
 use crate::scene::{FrameSnapshot, Scene};
 
+use super::caustics;
 use super::fish::LodView;
 use super::frame::{self, DebugView, Globals, RenderSettings};
 use super::pipeline::{BuildEnv, Layouts, Passes};
@@ -43,6 +44,7 @@ pub struct Renderer {
     linear_repeat: wgpu::Sampler,
     shadow_sampler: wgpu::Sampler,
     shadow_view: wgpu::TextureView,
+    caustics_view: wgpu::TextureView,
     globals: wgpu::Buffer,
     post_params: wgpu::Buffer,
     frame_group: wgpu::BindGroup,
@@ -114,6 +116,7 @@ impl Renderer {
             Some(wgpu::CompareFunction::LessEqual),
         );
         let shadow_view = shadow::shadow_map(device);
+        let caustics_view = caustics::caustics_map(device);
         let globals = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("globals"),
             size: std::mem::size_of::<Globals>() as u64,
@@ -147,7 +150,7 @@ impl Renderer {
             &post_params,
             &env,
             (&linear_clamp, &shadow_sampler),
-            &shadow_view,
+            (&shadow_view, &caustics_view),
         );
         Ok(Self {
             device: device.clone(),
@@ -159,6 +162,7 @@ impl Renderer {
             linear_repeat,
             shadow_sampler,
             shadow_view,
+            caustics_view,
             globals,
             post_params,
             frame_group,
@@ -181,7 +185,7 @@ impl Renderer {
             &self.post_params,
             &self.env,
             (&self.linear_clamp, &self.shadow_sampler),
-            &self.shadow_view,
+            (&self.shadow_view, &self.caustics_view),
         );
     }
 
@@ -359,7 +363,17 @@ impl Renderer {
             }
         }
 
-        // 2. opaque HDR pass
+        // 2. the caustics map, only while they are on (off, the lit shaders weigh it by 0)
+        if settings.caustics {
+            caustics::encode(
+                &mut enc,
+                &p.caustics.current,
+                &self.shadow_frame_group,
+                &self.caustics_view,
+            );
+        }
+
+        // 3. opaque HDR pass
         {
             let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("opaque"),
@@ -402,14 +416,14 @@ impl Renderer {
             pass.draw(0..3, 0..1);
         }
 
-        // 3. what lies below the water, for refraction
+        // 4. what lies below the water, for refraction
         enc.copy_texture_to_texture(
             t.hdr.as_image_copy(),
             t.scene_color.as_image_copy(),
             t.scene_color.size(),
         );
 
-        // 4. water: depth tested against the opaque depth, which it also samples (read-only)
+        // 5. water: depth tested against the opaque depth, which it also samples (read-only)
         {
             let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("water"),
@@ -437,7 +451,7 @@ impl Renderer {
             pass.draw_indexed(0..res.water_index_count, 0, 0..1);
         }
 
-        // 5. to the display: tone map (scaling up), or a debug view
+        // 6. to the display: tone map (scaling up), or a debug view
         {
             let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("output"),
@@ -477,7 +491,7 @@ fn env_groups(
     post_params: &wgpu::Buffer,
     env: &Environment,
     (linear_clamp, shadow_sampler): (&wgpu::Sampler, &wgpu::Sampler),
-    shadow_view: &wgpu::TextureView,
+    (shadow_view, caustics_view): (&wgpu::TextureView, &wgpu::TextureView),
 ) -> (wgpu::BindGroup, wgpu::BindGroup) {
     let frame = device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("frame"),
@@ -488,6 +502,8 @@ fn env_groups(
             entry(2, wgpu::BindingResource::Sampler(linear_clamp)),
             entry(3, wgpu::BindingResource::TextureView(shadow_view)),
             entry(4, wgpu::BindingResource::Sampler(shadow_sampler)),
+            entry(5, wgpu::BindingResource::TextureView(caustics_view)),
+            entry(6, wgpu::BindingResource::Sampler(linear_clamp)),
         ],
     });
     let debug = device.create_bind_group(&wgpu::BindGroupDescriptor {
