@@ -13,6 +13,7 @@ const DEBUG_NONE: u32 = 0u;
 const DEBUG_SHADOW_MAP: u32 = 1u;
 const DEBUG_NORMALS: u32 = 2u;
 const DEBUG_ENV_CUBE: u32 = 3u;
+const DEBUG_CAUSTICS_MAP: u32 = 4u;
 
 // One Gerstner wave (`WaveGpu` in src/render/frame.rs).
 struct Wave {

@@ -252,6 +252,7 @@ fn golden_images_of_the_default_scene_and_debug_views() {
         (DebugView::ShadowMap, "shadow-map"),
         (DebugView::Normals, "normals"),
         (DebugView::EnvCube, "env-cube"),
+        (DebugView::CausticsMap, "caustics-map"),
     ] {
         h.settings.debug_view = view;
         let img = h.render(GOLDEN_SIZE).unwrap();

@@ -28,7 +28,7 @@ pub struct Args {
     /// Frames per second of simulated time between frames
     #[arg(long, default_value_t = 30.0)]
     pub fps: f64,
-    /// Debug view: none, shadow-map, normals, env-cube
+    /// Debug view: none, shadow-map, normals, env-cube, caustics-map
     #[arg(long, default_value = "none", value_parser = parse_view)]
     pub view: DebugView,
     /// Folder of the WGSL shaders
@@ -71,8 +71,9 @@ pub fn parse_view(s: &str) -> Result<DebugView, String> {
         "shadow-map" | "shadow" => Ok(DebugView::ShadowMap),
         "normals" => Ok(DebugView::Normals),
         "env-cube" | "env" => Ok(DebugView::EnvCube),
+        "caustics-map" | "caustics" => Ok(DebugView::CausticsMap),
         _ => Err(format!(
-            "unknown view {s:?}: none, shadow-map, normals, env-cube"
+            "unknown view {s:?}: none, shadow-map, normals, env-cube, caustics-map"
         )),
     }
 }

@@ -18,10 +18,17 @@ pub enum DebugView {
     ShadowMap,
     Normals,
     EnvCube,
+    CausticsMap,
 }
 
 impl DebugView {
-    pub const ALL: [DebugView; 4] = [Self::None, Self::ShadowMap, Self::Normals, Self::EnvCube];
+    pub const ALL: [DebugView; 5] = [
+        Self::None,
+        Self::ShadowMap,
+        Self::Normals,
+        Self::EnvCube,
+        Self::CausticsMap,
+    ];
 
     /// `DEBUG_*` in common.wgsl.
     pub fn code(self) -> u32 {
@@ -30,6 +37,7 @@ impl DebugView {
             Self::ShadowMap => 1,
             Self::Normals => 2,
             Self::EnvCube => 3,
+            Self::CausticsMap => 4,
         }
     }
 
@@ -39,6 +47,7 @@ impl DebugView {
             Self::ShadowMap => "shadow map",
             Self::Normals => "normals",
             Self::EnvCube => "environment cube",
+            Self::CausticsMap => "caustics map",
         }
     }
 }

@@ -363,8 +363,9 @@ impl Renderer {
             }
         }
 
-        // 2. the caustics map, only while they are on (off, the lit shaders weigh it by 0)
-        if settings.caustics {
+        // 2. the caustics map, only while they are on (off, the lit shaders weigh it by 0) or
+        //    shown
+        if settings.caustics || settings.debug_view == DebugView::CausticsMap {
             caustics::encode(
                 &mut enc,
                 &p.caustics.current,
@@ -467,7 +468,7 @@ impl Renderer {
                 ..Default::default()
             });
             match settings.debug_view {
-                DebugView::ShadowMap | DebugView::EnvCube => {
+                DebugView::ShadowMap | DebugView::EnvCube | DebugView::CausticsMap => {
                     pass.set_pipeline(&p.debug.current.pipeline);
                     pass.set_bind_group(0, &self.debug_group, &[]);
                 }
@@ -514,6 +515,7 @@ fn env_groups(
             entry(1, wgpu::BindingResource::TextureView(shadow_view)),
             entry(2, wgpu::BindingResource::TextureView(&env.view)),
             entry(3, wgpu::BindingResource::Sampler(linear_clamp)),
+            entry(4, wgpu::BindingResource::TextureView(caustics_view)),
         ],
     });
     (frame, debug)
