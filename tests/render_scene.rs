@@ -419,3 +419,38 @@ fn ten_thousand_fish_grow_the_instance_buffer_and_the_water_grid_follows_live_ed
     h.render(SIZE).unwrap();
     assert!(h.renderer.water_index_count() < n / 10);
 }
+
+/// Below render scale 0.7 the caustics map is drawn at half size (the automatic quality's
+/// lower rungs): the caustics still show, and going back up draws the same frame as before.
+#[test]
+fn caustics_follow_the_render_scale_down_and_back() {
+    let mut h = headless(Path::new("shaders"));
+    h.sim.set_time(2.5);
+    h.settings.caustics = true;
+    let full = h.render(SIZE).unwrap();
+    h.settings.render_scale = 0.55;
+    let low_on = seabed(&h.render(SIZE).unwrap());
+    h.settings.caustics = false;
+    let low_off = seabed(&h.render(SIZE).unwrap());
+    let (frac, mean) = diff(&low_on, &low_off);
+    assert!(
+        !within_tolerance(&low_on, &low_off),
+        "at scale 0.55 the caustics must still show: {frac} {mean}"
+    );
+    // back up, later: the lit passes must read the map drawn this frame (a bind group left on
+    // an old map would show the waves of an earlier frame)
+    h.settings.caustics = true;
+    h.settings.render_scale = 1.0;
+    h.sim.set_time(2.7);
+    let again = h.render(SIZE).unwrap();
+    let mut fresh = headless(Path::new("shaders"));
+    fresh.settings.caustics = true;
+    fresh.sim.set_time(2.7);
+    let want = fresh.render(SIZE).unwrap();
+    assert_eq!(
+        diff(&again, &want),
+        (0.0, 0.0),
+        "back at full size, as drawn fresh"
+    );
+    assert!(!within_tolerance(&full, &want), "2.7 s differs from 2.5 s");
+}

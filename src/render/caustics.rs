@@ -11,8 +11,22 @@ use super::pipeline::{Ctx, PipelineDesc, Technique};
 
 /// Texels per side of the caustics map: 256² over the ±12 m swim box is ~9.6 cm a texel,
 /// finer than the focused lines of the shipped waves (shortest wavelength 1.7 m), and 65 536
-/// texels of five Gerstner sums each cost little next to one lit pixel per screen pixel.
+/// texels of five Gerstner sums each cost little next to one lit pixel per screen pixel
+/// (~9 ms of CPU a frame on llvmpipe, docs/benchmarks/scene.md).
 pub const CAUSTICS_MAP_SIZE: u32 = 256;
+
+/// When the automatic quality draws the scene below this scale, the map is drawn at half the
+/// size (a quarter of the cost): the image is blurred by the scaling up anyway.
+pub const HALF_SIZE_BELOW_RENDER_SCALE: f32 = 0.7;
+
+/// The caustics map's side for a frame drawn at `render_scale`.
+pub fn map_size(render_scale: f32) -> u32 {
+    if render_scale < HALF_SIZE_BELOW_RENDER_SCALE {
+        CAUSTICS_MAP_SIZE / 2
+    } else {
+        CAUSTICS_MAP_SIZE
+    }
+}
 
 /// One channel of focusing factor; half floats keep the bright folds (up to 6) unclipped.
 pub const CAUSTICS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R16Float;
@@ -55,14 +69,14 @@ impl Technique for CausticsPipeline {
     }
 }
 
-/// The caustics map (rendered by the caustics pass, read by the lit passes).
-pub fn caustics_map(device: &wgpu::Device) -> wgpu::TextureView {
+/// The caustics map, `size_px` a side (rendered by the caustics pass, read by the lit passes).
+pub fn caustics_map(device: &wgpu::Device, size_px: u32) -> wgpu::TextureView {
     device
         .create_texture(&wgpu::TextureDescriptor {
             label: Some("caustics map"),
             size: wgpu::Extent3d {
-                width: CAUSTICS_MAP_SIZE,
-                height: CAUSTICS_MAP_SIZE,
+                width: size_px,
+                height: size_px,
                 depth_or_array_layers: 1,
             },
             mip_level_count: 1,

@@ -45,6 +45,8 @@ pub struct Renderer {
     shadow_sampler: wgpu::Sampler,
     shadow_view: wgpu::TextureView,
     caustics_view: wgpu::TextureView,
+    /// the caustics map's side now (it follows the render scale)
+    caustics_size_px: u32,
     globals: wgpu::Buffer,
     post_params: wgpu::Buffer,
     frame_group: wgpu::BindGroup,
@@ -116,7 +118,8 @@ impl Renderer {
             Some(wgpu::CompareFunction::LessEqual),
         );
         let shadow_view = shadow::shadow_map(device);
-        let caustics_view = caustics::caustics_map(device);
+        let caustics_size_px = caustics::CAUSTICS_MAP_SIZE;
+        let caustics_view = caustics::caustics_map(device, caustics_size_px);
         let globals = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("globals"),
             size: std::mem::size_of::<Globals>() as u64,
@@ -163,6 +166,7 @@ impl Renderer {
             shadow_sampler,
             shadow_view,
             caustics_view,
+            caustics_size_px,
             globals,
             post_params,
             frame_group,
@@ -297,6 +301,13 @@ impl Renderer {
         let size = (size.0.max(1), size.1.max(1));
         let inner = render_size(size, settings.render_scale);
         self.ensure_targets(inner);
+        let caustics_size_px = caustics::map_size(settings.render_scale);
+        if caustics_size_px != self.caustics_size_px {
+            self.caustics_size_px = caustics_size_px;
+            self.caustics_view = caustics::caustics_map(&self.device, caustics_size_px);
+            // the lit passes' and the debug view's groups hold the map
+            self.env_changed();
+        }
         let g = frame::globals(scene, snap, settings, inner, self.env.mips);
         self.queue
             .write_buffer(&self.globals, 0, bytemuck::bytes_of(&g));
