@@ -89,7 +89,8 @@ fn shade(base: vec3f, metallic: f32, roughness_in: f32, reflectance: f32,
         direct = base / PI * n_dot_l;
     }
     let sun = g.sun_color * g.sun_intensity;
-    let lit = direct * sun * sun_visibility(world_pos, n) * sun_transmittance(world_pos);
+    let lit = direct * sun * sun_visibility(world_pos, n) * sun_transmittance(world_pos)
+        * caustics_light(world_pos);
 
     // ambient: irradiance from the roughest mip, specular from the roughness-matched mip
     var ambient: vec3f;

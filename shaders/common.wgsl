@@ -6,11 +6,14 @@
 
 const MAX_WAVES: u32 = 8u;
 const PI: f32 = 3.14159265;
+// Snell's ratio from air into water, n_air / n_water = 1 / 1.33
+const ETA_AIR_OVER_WATER: f32 = 0.7518797;
 
 const DEBUG_NONE: u32 = 0u;
 const DEBUG_SHADOW_MAP: u32 = 1u;
 const DEBUG_NORMALS: u32 = 2u;
 const DEBUG_ENV_CUBE: u32 = 3u;
+const DEBUG_CAUSTICS_MAP: u32 = 4u;
 
 // One Gerstner wave (`WaveGpu` in src/render/frame.rs).
 struct Wave {
@@ -48,7 +51,10 @@ struct Globals {
     shadows_on: u32,
     cook_torrance_on: u32,      // 0 = Lambert only
     fresnel_on: u32,
-    _pad: u32,
+    caustics_on: u32,
+    caustics_half_extent_m: f32, // the caustics map covers |x|, |z| ≤ this
+    caustics_depth_m: f32,      // below the water level: the floor the map is focused on
+    _pad: vec2f,
     waves: array<Wave, MAX_WAVES>,
 }
 
@@ -57,6 +63,9 @@ struct Globals {
 @group(0) @binding(2) var env_sampler: sampler;
 @group(0) @binding(3) var shadow_map: texture_depth_2d;
 @group(0) @binding(4) var shadow_sampler: sampler_comparison;
+// made each frame by caustics.wgsl (not bound in that pass itself)
+@group(0) @binding(5) var caustics_map: texture_2d<f32>;
+@group(0) @binding(6) var caustics_sampler: sampler;
 
 fn on(flag: u32) -> bool {
     return flag != 0u;
@@ -122,4 +131,21 @@ fn sun_transmittance(world_pos: vec3f) -> vec3f {
     let depth = max(g.water_level_m - world_pos.y, 0.0);
     let path = depth / max(g.sun_dir.y, 0.1);
     return exp(-g.absorption_per_m * path);
+}
+
+// How much sunlight the waves focus onto a point under water, relative to flat water: the
+// caustics map (caustics.wgsl, GPU Gems 1 ch. 2) at the point's xz, shifted along the refracted
+// sun by how far the point lies above or below the map's floor. The pattern is faded in with
+// depth (none at the surface, where rays have not converged yet, full from the map's depth on)
+// and out at the map's edge; caustics off weighs it by 0 (a factor, not a branch).
+fn caustics_light(world_pos: vec3f) -> f32 {
+    let depth = g.water_level_m - world_pos.y;
+    let ray = refract(-g.sun_dir, vec3f(0.0, 1.0, 0.0), ETA_AIR_OVER_WATER);
+    let xz = world_pos.xz + ray.xz * (g.caustics_depth_m - depth) / max(-ray.y, 0.05);
+    let uv = xz / (2.0 * max(g.caustics_half_extent_m, 1e-3)) + 0.5;
+    let focused = textureSampleLevel(caustics_map, caustics_sampler, uv, 0.0).r;
+    let edge = max(abs(uv.x * 2.0 - 1.0), abs(uv.y * 2.0 - 1.0));
+    let inside = 1.0 - smoothstep(0.85, 1.0, edge);
+    let depth_fade = clamp(depth / max(g.caustics_depth_m, 1e-3), 0.0, 1.0);
+    return mix(1.0, focused, f32(g.caustics_on) * inside * depth_fade);
 }

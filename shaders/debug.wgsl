@@ -1,14 +1,15 @@
 // debug.wgsl — teaching views: the sun's shadow map as grey levels (near = dark), and the
 // environment cube unfolded as a horizontal cross (+y above, −y below; −x +z +x −z across),
-// each face showing its roughness-blurred mip chain from left (sharp) to right in a strip.
-// Shadow maps: Williams 1978; cube maps: Greene 1986.
+// each face showing its roughness-blurred mip chain from left (sharp) to right in a strip, and
+// the caustics map seen from above (+x right, +z down; 1 = flat water's light, mid grey).
+// Shadow maps: Williams 1978; cube maps: Greene 1986; caustics: GPU Gems 1 ch. 2.
 //!include fullscreen.wgsl
 //!include aces.wgsl
 
 // `PostParams` in src/render/tonemap.rs
 struct Post {
     exposure: f32,
-    debug_view: u32,            // 1 shadow map, 3 env cube
+    debug_view: u32,            // 1 shadow map, 3 env cube, 4 caustics map
     env_mip_count: f32,
     _pad: f32,
     viewport_size_px: vec2f,    // the display target
@@ -19,6 +20,7 @@ struct Post {
 @group(0) @binding(1) var shadow_map: texture_depth_2d;
 @group(0) @binding(2) var env_cube: texture_cube<f32>;
 @group(0) @binding(3) var env_sampler: sampler;
+@group(0) @binding(4) var caustics_map: texture_2d<f32>;
 
 fn cross_dir(face: i32, f: vec2f) -> vec3f {
     let u = f.x * 2.0 - 1.0;
@@ -41,11 +43,20 @@ fn cross_dir(face: i32, f: vec2f) -> vec3f {
 @fragment
 fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
     let size_px = post.viewport_size_px;
+    // the two maps: square, centred
+    let side = min(size_px.x, size_px.y);
+    let p = (in.clip.xy - 0.5 * (size_px - vec2f(side))) / side;
+    let outside = any(p < vec2f(0.0)) || any(p > vec2f(1.0));
+    if (post.debug_view == 4u) {
+        if (outside) {
+            return vec4f(0.05, 0.05, 0.05, 1.0);
+        }
+        // focusing factor: 1 (flat water) mid grey, the bright folds white
+        let focus = textureSampleLevel(caustics_map, env_sampler, p, 0.0).r;
+        return vec4f(aces(vec3f(0.2 * focus)), 1.0);
+    }
     if (post.debug_view == 1u) {
-        // square, centred
-        let side = min(size_px.x, size_px.y);
-        let p = (in.clip.xy - 0.5 * (size_px - vec2f(side))) / side;
-        if (any(p < vec2f(0.0)) || any(p > vec2f(1.0))) {
+        if (outside) {
             return vec4f(0.05, 0.05, 0.05, 1.0);
         }
         let size = vec2f(textureDimensions(shadow_map));

@@ -14,9 +14,13 @@ const SIZE: (u32, u32) = (320, 180);
 /// The golden images: large enough that a fish is several pixels long.
 const GOLDEN_SIZE: (u32, u32) = (640, 360);
 
+/// The default scene with caustics off: the goldens of every other technique were recorded
+/// without them (one golden and the toggle tests below have them on).
 fn headless(shader_dir: &Path) -> Headless {
     let s = scene::load_scene(Path::new(scene::DEFAULT_SCENE)).unwrap();
-    Headless::new(s, shader_dir).unwrap()
+    let mut h = Headless::new(s, shader_dir).unwrap();
+    h.settings.caustics = false;
+    h
 }
 
 /// Differences between two images: the fraction of pixels with any channel off by more than
@@ -248,11 +252,73 @@ fn golden_images_of_the_default_scene_and_debug_views() {
         (DebugView::ShadowMap, "shadow-map"),
         (DebugView::Normals, "normals"),
         (DebugView::EnvCube, "env-cube"),
+        (DebugView::CausticsMap, "caustics-map"),
     ] {
         h.settings.debug_view = view;
         let img = h.render(GOLDEN_SIZE).unwrap();
         golden(name, &img);
     }
+    h.settings.debug_view = DebugView::None;
+    h.settings.caustics = true;
+    let img = h.render(GOLDEN_SIZE).unwrap();
+    golden("caustics-t2.5", &img);
+}
+
+/// The lower half of a frame from the default camera: seabed seen through the water (with
+/// the rocks' and fish's share of it).
+fn seabed(img: &image::RgbaImage) -> image::RgbaImage {
+    let (w, h) = img.dimensions();
+    image::imageops::crop_imm(img, 0, h / 2, w, h - h / 2).to_image()
+}
+
+/// Mean of the three channels over an image, 0–255.
+fn mean_level(img: &image::RgbaImage) -> f64 {
+    let sum: u64 = img
+        .pixels()
+        .map(|p| (0..3).map(|c| p[c] as u64).sum::<u64>())
+        .sum();
+    sum as f64 / (3.0 * (img.width() * img.height()) as f64)
+}
+
+/// Caustics change the seabed beyond the golden tolerance, move with the waves, and only
+/// redistribute the sunlight (the area ratio keeps flat water's mean), so the seabed gets
+/// brighter lines, not a brighter floor.
+#[test]
+fn toggling_caustics_changes_the_seabed_and_they_move_with_the_waves() {
+    let mut h = headless(Path::new("shaders"));
+    h.sim.set_time(2.5);
+    let off = seabed(&h.render(GOLDEN_SIZE).unwrap());
+    h.settings.caustics = true;
+    let on = seabed(&h.render(GOLDEN_SIZE).unwrap());
+    let (frac, mean) = diff(&on, &off);
+    eprintln!(
+        "caustics on vs off, seabed: {:.1} % of pixels off, mean diff {mean:.2}; mean level \
+         {:.2} on, {:.2} off",
+        frac * 100.0,
+        mean_level(&on),
+        mean_level(&off)
+    );
+    assert!(
+        !within_tolerance(&on, &off),
+        "caustics made no visible difference on the seabed"
+    );
+    assert!(
+        frac > 0.2,
+        "caustics lit only {:.1} % of the seabed",
+        frac * 100.0
+    );
+    assert!(
+        (mean_level(&on) - mean_level(&off)).abs() < 0.02 * mean_level(&off),
+        "caustics should redistribute the light, not add it"
+    );
+    h.sim.set_time(2.7);
+    let later = seabed(&h.render(GOLDEN_SIZE).unwrap());
+    h.settings.caustics = false;
+    let later_off = seabed(&h.render(GOLDEN_SIZE).unwrap());
+    // the pattern moves: 0.2 s changes the lit seabed more than the unlit one
+    let (moved_on, moved_off) = (diff(&later, &on).1, diff(&later_off, &off).1);
+    eprintln!("0.2 s later, mean diff: {moved_on:.2} with caustics, {moved_off:.2} without");
+    assert!(moved_on > 1.2 * moved_off);
 }
 
 /// The tolerance is tight enough that the golden catches a missing school or a moved sun.
@@ -265,6 +331,7 @@ fn the_golden_fails_without_the_fish_or_with_the_sun_moved() {
         let mut s = scene::load_scene(Path::new(scene::DEFAULT_SCENE)).unwrap();
         edit(&mut s);
         let mut h = Headless::new(s, Path::new("shaders")).unwrap();
+        h.settings.caustics = false;
         h.sim.set_time(2.5);
         h.render(GOLDEN_SIZE).unwrap()
     };
@@ -302,13 +369,14 @@ fn rendering_is_deterministic_and_toggling_shadows_exceeds_the_tolerance() {
     );
     // and each other technique toggle is visible too
     h.settings.shadows = true;
-    for toggle in 0..4 {
+    for toggle in 0..5 {
         let mut s = h.settings;
         match toggle {
             0 => s.env_map = false,
             1 => s.normal_maps = false,
             2 => s.brdf = false,
-            _ => s.fresnel = false,
+            3 => s.fresnel = false,
+            _ => s.caustics = true,
         }
         let saved = std::mem::replace(&mut h.settings, s);
         let img = h.render(SIZE).unwrap();
@@ -350,4 +418,39 @@ fn ten_thousand_fish_grow_the_instance_buffer_and_the_water_grid_follows_live_ed
     h.sim.scene.water.resolution = 16;
     h.render(SIZE).unwrap();
     assert!(h.renderer.water_index_count() < n / 10);
+}
+
+/// Below render scale 0.7 the caustics map is drawn at half size (the automatic quality's
+/// lower rungs): the caustics still show, and going back up draws the same frame as before.
+#[test]
+fn caustics_follow_the_render_scale_down_and_back() {
+    let mut h = headless(Path::new("shaders"));
+    h.sim.set_time(2.5);
+    h.settings.caustics = true;
+    let full = h.render(SIZE).unwrap();
+    h.settings.render_scale = 0.55;
+    let low_on = seabed(&h.render(SIZE).unwrap());
+    h.settings.caustics = false;
+    let low_off = seabed(&h.render(SIZE).unwrap());
+    let (frac, mean) = diff(&low_on, &low_off);
+    assert!(
+        !within_tolerance(&low_on, &low_off),
+        "at scale 0.55 the caustics must still show: {frac} {mean}"
+    );
+    // back up, later: the lit passes must read the map drawn this frame (a bind group left on
+    // an old map would show the waves of an earlier frame)
+    h.settings.caustics = true;
+    h.settings.render_scale = 1.0;
+    h.sim.set_time(2.7);
+    let again = h.render(SIZE).unwrap();
+    let mut fresh = headless(Path::new("shaders"));
+    fresh.settings.caustics = true;
+    fresh.sim.set_time(2.7);
+    let want = fresh.render(SIZE).unwrap();
+    assert_eq!(
+        diff(&again, &want),
+        (0.0, 0.0),
+        "back at full size, as drawn fresh"
+    );
+    assert!(!within_tolerance(&full, &want), "2.7 s differs from 2.5 s");
 }

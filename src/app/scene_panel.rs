@@ -19,6 +19,7 @@ impl SceneMode {
         ui.checkbox(&mut s.shadows, "shadow map (PCF)");
         ui.checkbox(&mut s.brdf, "Cook–Torrance BRDF (off: Lambert)");
         ui.checkbox(&mut s.fresnel, "Fresnel (Schlick)");
+        ui.checkbox(&mut s.caustics, "caustics (GPU Gems 1 ch. 2)");
         ui.add(egui::Slider::new(&mut s.exposure, 0.1..=4.0).text("exposure"));
         ui.separator();
         ui.label("Debug view");

@@ -28,7 +28,7 @@ pub struct Args {
     /// Frames per second of simulated time between frames
     #[arg(long, default_value_t = 30.0)]
     pub fps: f64,
-    /// Debug view: none, shadow-map, normals, env-cube
+    /// Debug view: none, shadow-map, normals, env-cube, caustics-map
     #[arg(long, default_value = "none", value_parser = parse_view)]
     pub view: DebugView,
     /// Folder of the WGSL shaders
@@ -42,6 +42,9 @@ pub struct Args {
     /// [default: 1, or the scene file's fixed quality]
     #[arg(long)]
     pub fish_detail: Option<f32>,
+    /// Leave the caustics out (to see or time what they add)
+    #[arg(long)]
+    pub no_caustics: bool,
 }
 
 pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
@@ -68,8 +71,9 @@ pub fn parse_view(s: &str) -> Result<DebugView, String> {
         "shadow-map" | "shadow" => Ok(DebugView::ShadowMap),
         "normals" => Ok(DebugView::Normals),
         "env-cube" | "env" => Ok(DebugView::EnvCube),
+        "caustics-map" | "caustics" => Ok(DebugView::CausticsMap),
         _ => Err(format!(
-            "unknown view {s:?}: none, shadow-map, normals, env-cube"
+            "unknown view {s:?}: none, shadow-map, normals, env-cube, caustics-map"
         )),
     }
 }
@@ -93,6 +97,7 @@ pub fn run(args: Args) -> Result<()> {
     let t0 = Instant::now();
     let mut h = Headless::new(scene, &args.shaders)?;
     h.settings.debug_view = args.view;
+    h.settings.caustics = !args.no_caustics;
     if let Some(s) = args.render_scale {
         anyhow::ensure!(
             (0.25..=1.0).contains(&s),

@@ -1,10 +1,12 @@
-//! Teaching views (debug.wgsl): the sun's shadow map as grey levels and the environment cube
-//! unfolded with its roughness mips, drawn straight into the display target.
+//! Teaching views (debug.wgsl): the sun's shadow map as grey levels, the environment cube
+//! unfolded with its roughness mips, and the caustics map seen from above, drawn straight into
+//! the display target.
 
 use super::pipeline::{Ctx, FLOAT, Layout, PipelineDesc, Technique, sampler, texture, uniform};
 use super::tonemap::PostParams;
 
-/// Group 0 of the debug views: parameters, the shadow map, the environment cube, a sampler.
+/// Group 0 of the debug views: parameters, the shadow map, the environment cube, a sampler,
+/// the caustics map.
 pub fn layout(device: &wgpu::Device) -> Layout {
     use wgpu::{TextureSampleType as T, TextureViewDimension as D};
     let vf = wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT;
@@ -16,6 +18,7 @@ pub fn layout(device: &wgpu::Device) -> Layout {
             texture(1, D::D2, T::Depth),
             texture(2, D::Cube, FLOAT),
             sampler(3, wgpu::SamplerBindingType::Filtering),
+            texture(4, D::D2, FLOAT),
         ],
     )
 }

@@ -18,10 +18,17 @@ pub enum DebugView {
     ShadowMap,
     Normals,
     EnvCube,
+    CausticsMap,
 }
 
 impl DebugView {
-    pub const ALL: [DebugView; 4] = [Self::None, Self::ShadowMap, Self::Normals, Self::EnvCube];
+    pub const ALL: [DebugView; 5] = [
+        Self::None,
+        Self::ShadowMap,
+        Self::Normals,
+        Self::EnvCube,
+        Self::CausticsMap,
+    ];
 
     /// `DEBUG_*` in common.wgsl.
     pub fn code(self) -> u32 {
@@ -30,6 +37,7 @@ impl DebugView {
             Self::ShadowMap => 1,
             Self::Normals => 2,
             Self::EnvCube => 3,
+            Self::CausticsMap => 4,
         }
     }
 
@@ -39,6 +47,7 @@ impl DebugView {
             Self::ShadowMap => "shadow map",
             Self::Normals => "normals",
             Self::EnvCube => "environment cube",
+            Self::CausticsMap => "caustics map",
         }
     }
 }
@@ -52,6 +61,8 @@ pub struct RenderSettings {
     /// Cook–Torrance; false = Lambert only
     pub brdf: bool,
     pub fresnel: bool,
+    /// light focused by the waves onto what lies under water (GPU Gems 1 ch. 2)
+    pub caustics: bool,
     pub debug_view: DebugView,
     pub exposure: f32,
     /// The scene is rendered at this fraction of the output's size in each direction and
@@ -70,6 +81,7 @@ impl Default for RenderSettings {
             shadows: true,
             brdf: true,
             fresnel: true,
+            caustics: true,
             debug_view: DebugView::None,
             exposure: 1.0,
             render_scale: 1.0,
@@ -123,11 +135,17 @@ pub struct Globals {
     pub shadows_on: u32,
     pub cook_torrance_on: u32,
     pub fresnel_on: u32,
-    pub _pad: u32,
+    pub caustics_on: u32,
+    /// the caustics map covers |x|, |z| ≤ this, metres
+    pub caustics_half_extent_m: f32,
+    /// below the water level: the floor the caustics map is focused on, metres
+    pub caustics_depth_m: f32,
+    pub _pad: [f32; 2],
     pub waves: [WaveGpu; MAX_WAVES],
 }
 
-/// Group 0 of the lit passes: the globals, the environment cube and the shadow map.
+/// Group 0 of the lit passes: the globals, the environment cube, the shadow map and the
+/// caustics map.
 pub fn frame_layout(device: &wgpu::Device) -> Layout {
     use wgpu::{SamplerBindingType as S, TextureSampleType as T, TextureViewDimension as D};
     let vf = wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT;
@@ -140,6 +158,8 @@ pub fn frame_layout(device: &wgpu::Device) -> Layout {
             sampler(2, S::Filtering),
             texture(3, D::D2, T::Depth),
             sampler(4, S::Comparison),
+            texture(5, D::D2, FLOAT),
+            sampler(6, S::Filtering),
         ],
     )
 }
@@ -213,7 +233,10 @@ pub fn globals(
         shadows_on: on(settings.shadows),
         cook_torrance_on: on(settings.brdf),
         fresnel_on: on(settings.fresnel),
-        _pad: 0,
+        caustics_on: on(settings.caustics),
+        caustics_half_extent_m: super::caustics::half_extent_m(scene),
+        caustics_depth_m: super::caustics::focus_depth_m(scene),
+        _pad: [0.0; 2],
         waves: waves_gpu(scene),
     }
 }
@@ -295,6 +318,15 @@ mod tests {
                 std::mem::offset_of!(Globals, cook_torrance_on),
             ),
             ("fresnel_on", std::mem::offset_of!(Globals, fresnel_on)),
+            ("caustics_on", std::mem::offset_of!(Globals, caustics_on)),
+            (
+                "caustics_half_extent_m",
+                std::mem::offset_of!(Globals, caustics_half_extent_m),
+            ),
+            (
+                "caustics_depth_m",
+                std::mem::offset_of!(Globals, caustics_depth_m),
+            ),
             ("_pad", std::mem::offset_of!(Globals, _pad)),
             ("waves", std::mem::offset_of!(Globals, waves)),
         ];

@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 use crate::diag::Diagnostic;
 
 use super::shaders::{self, Checked};
-use super::{debug, fish, frame, interface, pbr, shadow, sky, tonemap, water};
+use super::{caustics, debug, fish, frame, interface, pbr, shadow, sky, tonemap, water};
 
 pub const HDR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
@@ -381,6 +381,7 @@ techniques! {
     pbr: pbr::PbrPipeline,
     fish: fish::FishPipelines,
     shadow: shadow::ShadowPipeline,
+    caustics: caustics::CausticsPipeline,
     water: water::WaterPipeline,
     tonemap: tonemap::TonemapPipeline,
     debug: debug::DebugPipeline,

@@ -1,4 +1,4 @@
-//! The frame: shadow map → opaque HDR pass (meshes, fish by level of detail, sky background
+//! The frame: shadow map → caustics map (when on) → opaque HDR pass (meshes, fish by level of detail, sky background
 //! last) → copy of the opaque colour → water pass (reads that copy and the depth) → tone map
 //! (scaling the HDR image up to the target) or a debug view into the caller's target. The
 //! window, `render-scene`, tests and the benchmark share it. It only renders: it reads the
@@ -11,6 +11,7 @@ use wgpu::util::DeviceExt;
 use crate::diag::Diagnostic;
 use crate::scene::{FrameSnapshot, Scene};
 
+use super::caustics;
 use super::fish::LodView;
 use super::frame::{self, DebugView, Globals, RenderSettings};
 use super::pipeline::{BuildEnv, Layouts, Passes};
@@ -43,6 +44,9 @@ pub struct Renderer {
     linear_repeat: wgpu::Sampler,
     shadow_sampler: wgpu::Sampler,
     shadow_view: wgpu::TextureView,
+    caustics_view: wgpu::TextureView,
+    /// the caustics map's side now (it follows the render scale)
+    caustics_size_px: u32,
     globals: wgpu::Buffer,
     post_params: wgpu::Buffer,
     frame_group: wgpu::BindGroup,
@@ -114,6 +118,8 @@ impl Renderer {
             Some(wgpu::CompareFunction::LessEqual),
         );
         let shadow_view = shadow::shadow_map(device);
+        let caustics_size_px = caustics::CAUSTICS_MAP_SIZE;
+        let caustics_view = caustics::caustics_map(device, caustics_size_px);
         let globals = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("globals"),
             size: std::mem::size_of::<Globals>() as u64,
@@ -147,7 +153,7 @@ impl Renderer {
             &post_params,
             &env,
             (&linear_clamp, &shadow_sampler),
-            &shadow_view,
+            (&shadow_view, &caustics_view),
         );
         Ok(Self {
             device: device.clone(),
@@ -159,6 +165,8 @@ impl Renderer {
             linear_repeat,
             shadow_sampler,
             shadow_view,
+            caustics_view,
+            caustics_size_px,
             globals,
             post_params,
             frame_group,
@@ -181,7 +189,7 @@ impl Renderer {
             &self.post_params,
             &self.env,
             (&self.linear_clamp, &self.shadow_sampler),
-            &self.shadow_view,
+            (&self.shadow_view, &self.caustics_view),
         );
     }
 
@@ -293,6 +301,13 @@ impl Renderer {
         let size = (size.0.max(1), size.1.max(1));
         let inner = render_size(size, settings.render_scale);
         self.ensure_targets(inner);
+        let caustics_size_px = caustics::map_size(settings.render_scale);
+        if caustics_size_px != self.caustics_size_px {
+            self.caustics_size_px = caustics_size_px;
+            self.caustics_view = caustics::caustics_map(&self.device, caustics_size_px);
+            // the lit passes' and the debug view's groups hold the map
+            self.env_changed();
+        }
         let g = frame::globals(scene, snap, settings, inner, self.env.mips);
         self.queue
             .write_buffer(&self.globals, 0, bytemuck::bytes_of(&g));
@@ -359,7 +374,18 @@ impl Renderer {
             }
         }
 
-        // 2. opaque HDR pass
+        // 2. the caustics map, only while they are on (off, the lit shaders weigh it by 0) or
+        //    shown
+        if settings.caustics || settings.debug_view == DebugView::CausticsMap {
+            caustics::encode(
+                &mut enc,
+                &p.caustics.current,
+                &self.shadow_frame_group,
+                &self.caustics_view,
+            );
+        }
+
+        // 3. opaque HDR pass
         {
             let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("opaque"),
@@ -402,14 +428,14 @@ impl Renderer {
             pass.draw(0..3, 0..1);
         }
 
-        // 3. what lies below the water, for refraction
+        // 4. what lies below the water, for refraction
         enc.copy_texture_to_texture(
             t.hdr.as_image_copy(),
             t.scene_color.as_image_copy(),
             t.scene_color.size(),
         );
 
-        // 4. water: depth tested against the opaque depth, which it also samples (read-only)
+        // 5. water: depth tested against the opaque depth, which it also samples (read-only)
         {
             let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("water"),
@@ -437,7 +463,7 @@ impl Renderer {
             pass.draw_indexed(0..res.water_index_count, 0, 0..1);
         }
 
-        // 5. to the display: tone map (scaling up), or a debug view
+        // 6. to the display: tone map (scaling up), or a debug view
         {
             let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("output"),
@@ -453,7 +479,7 @@ impl Renderer {
                 ..Default::default()
             });
             match settings.debug_view {
-                DebugView::ShadowMap | DebugView::EnvCube => {
+                DebugView::ShadowMap | DebugView::EnvCube | DebugView::CausticsMap => {
                     pass.set_pipeline(&p.debug.current.pipeline);
                     pass.set_bind_group(0, &self.debug_group, &[]);
                 }
@@ -477,7 +503,7 @@ fn env_groups(
     post_params: &wgpu::Buffer,
     env: &Environment,
     (linear_clamp, shadow_sampler): (&wgpu::Sampler, &wgpu::Sampler),
-    shadow_view: &wgpu::TextureView,
+    (shadow_view, caustics_view): (&wgpu::TextureView, &wgpu::TextureView),
 ) -> (wgpu::BindGroup, wgpu::BindGroup) {
     let frame = device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("frame"),
@@ -488,6 +514,8 @@ fn env_groups(
             entry(2, wgpu::BindingResource::Sampler(linear_clamp)),
             entry(3, wgpu::BindingResource::TextureView(shadow_view)),
             entry(4, wgpu::BindingResource::Sampler(shadow_sampler)),
+            entry(5, wgpu::BindingResource::TextureView(caustics_view)),
+            entry(6, wgpu::BindingResource::Sampler(linear_clamp)),
         ],
     });
     let debug = device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -498,6 +526,7 @@ fn env_groups(
             entry(1, wgpu::BindingResource::TextureView(shadow_view)),
             entry(2, wgpu::BindingResource::TextureView(&env.view)),
             entry(3, wgpu::BindingResource::Sampler(linear_clamp)),
+            entry(4, wgpu::BindingResource::TextureView(caustics_view)),
         ],
     });
     (frame, debug)
