@@ -329,7 +329,7 @@ mod tests {
         )));
         let at: Vec<(usize, usize)> = p.iter().map(|d| (d.line, d.col)).collect();
         // the missing file at its path's first character, the values at themselves
-        assert_eq!(at, [(5, 29), (6, 42), (6, 57)], "{p:?}");
+        assert_eq!(at, [(5, 29), (6, 41), (6, 56)], "{p:?}");
         assert!(p[0].message.contains("no such file"), "{}", p[0]);
         assert!(p[1].message.contains("pitch 95"), "{}", p[1]);
         assert!(p[2].message.contains("height 0"), "{}", p[2]);
