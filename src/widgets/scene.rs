@@ -95,6 +95,7 @@ impl SceneGpu {
         let index = match all.iter().position(|r| r.scene_path == scene_path) {
             Some(i) => i,
             None => {
+                let started = std::time::Instant::now();
                 let root = scene_path
                     .parent()
                     .and_then(Path::parent)
@@ -108,6 +109,7 @@ impl SceneGpu {
                     OUTPUT_FORMAT,
                 )
                 .map_err(|e| format!("the scene renderer could not start: {e:#}"))?;
+                tracing::debug!("scene renderer for slides made in {:?}", started.elapsed());
                 all.push(SharedRenderer {
                     scene_path: scene_path.to_path_buf(),
                     scene: scene.clone(),
@@ -219,11 +221,13 @@ impl SceneWidget {
             Some(dir) => crate::paths::resolve_in(dir, &spec.scene).map_err(|e| e.to_string()),
             None => Ok(PathBuf::from(&spec.scene)),
         };
+        let started = std::time::Instant::now();
         let sim = scene_path.clone().and_then(|p| {
             crate::scene::load_scene(&p)
                 .map(SceneSim::new)
                 .map_err(|d| d.to_string())
         });
+        tracing::debug!("scene widget: scene loaded in {:?}", started.elapsed());
         let mut spec = spec;
         // The camera's unset values are the scene file's, so the presenter's sliders start there.
         if let Ok(sim) = &sim {
@@ -379,10 +383,17 @@ impl SceneWidget {
         if self.drawn.as_ref() == Some(&key) {
             return;
         }
+        let started = std::time::Instant::now();
         let snap = sim.snapshot();
         let result = gpu.with_renderer(path, &sim.scene, |r| {
             r.render(&sim.scene, &snap, &settings, &out.view, size);
         });
+        tracing::debug!(
+            "scene widget: {}x{} frame recorded in {:?}",
+            size.0,
+            size.1,
+            started.elapsed()
+        );
         self.render_error = result.err();
         self.drawn = Some(key);
     }
