@@ -199,3 +199,48 @@ fn scene_widget_snapshot() {
         &SnapshotOptions::new().threshold(0.6).max_failed_pixels(8),
     );
 }
+
+/// A frame is rendered only when the picture changes, and slides without a Scene widget never
+/// make a scene renderer; every Scene widget on every slide shares one.
+#[test]
+fn renders_only_on_change_and_costs_nothing_on_other_slides() {
+    let mut off = OffscreenRenderer::software_first().unwrap();
+    let gpu = SceneGpu::get(off.egui_ctx()).expect("offscreen installs the scene device");
+    let deck = lectern::deck::load_deck(&root().join("slides/lecture.ron")).unwrap();
+    let index = |id: &str| {
+        deck.slides
+            .iter()
+            .position(|s| s.id.as_deref() == Some(id))
+            .unwrap()
+    };
+    let mut state = lectern::app::SlideState::default();
+    off.render_slide(&deck, index("euler"), &mut state, [640, 360])
+        .unwrap();
+    assert_eq!(gpu.renderer_count(), 0, "a slide without a scene");
+    for id in ["project-env-map", "project-shadow-map"] {
+        let mut state = lectern::app::SlideState::default();
+        off.render_slide(&deck, index(id), &mut state, [640, 360])
+            .unwrap();
+    }
+    assert_eq!(gpu.renderer_count(), 1, "four widgets, one renderer");
+
+    let mut w = SceneWidget::new_in(spec(), Some(&root().join("slides")));
+    let mut draw = |w: &mut SceneWidget| {
+        off.render([320, 180], 1.0, |ui| {
+            egui::CentralPanel::default()
+                .frame(egui::Frame::NONE)
+                .show(ui, |ui| w.ui(ui));
+        })
+        .unwrap()
+    };
+    draw(&mut w);
+    assert_eq!(w.frames_rendered(), 1, "three egui passes, one scene frame");
+    draw(&mut w);
+    assert_eq!(w.frames_rendered(), 1, "nothing changed");
+    w.spec.toggles.shadows = Some(false);
+    draw(&mut w);
+    assert_eq!(w.frames_rendered(), 2, "a toggle renders again");
+    w.spec.camera.yaw_deg = Some(21.0);
+    draw(&mut w);
+    assert_eq!(w.frames_rendered(), 3, "so does the camera");
+}

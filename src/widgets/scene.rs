@@ -80,6 +80,11 @@ impl SceneGpu {
         }
     }
 
+    /// How many scene renderers exist (one per scene file some Scene widget has drawn).
+    pub fn renderer_count(&self) -> usize {
+        self.renderers.lock().map_or(0, |all| all.len())
+    }
+
     /// Runs `draw` with the renderer of `scene_path` (made on first use; its meshes rebuilt when
     /// the scene changed).
     fn with_renderer<R>(
@@ -165,6 +170,7 @@ pub struct SceneWidget {
     render_error: Option<String>,
     /// egui's clock at the last advanced frame while playing
     last_time: Option<f64>,
+    frames_rendered: u64,
 }
 
 fn debug_view(view: SceneView) -> DebugView {
@@ -246,7 +252,13 @@ impl SceneWidget {
             drawn: None,
             render_error: None,
             last_time: None,
+            frames_rendered: 0,
         }
+    }
+
+    /// How many scene frames the widget has rendered (it renders only when its picture changes).
+    pub fn frames_rendered(&self) -> u64 {
+        self.frames_rendered
     }
 
     /// The simulation the widget shows (after the last `ui`).
@@ -396,6 +408,7 @@ impl SceneWidget {
         );
         self.render_error = result.err();
         self.drawn = Some(key);
+        self.frames_rendered += 1;
     }
 
     fn problem(&self) -> Option<String> {
