@@ -97,7 +97,9 @@ fn default_height() -> f64 {
 pub const YAW_RANGE_DEG: (f64, f64) = (-360.0, 360.0);
 pub const PITCH_RANGE_DEG: (f64, f64) = (-85.0, 85.0);
 pub const DISTANCE_RANGE_M: (f64, f64) = (0.5, 200.0);
-pub const TIME_RANGE_S: (f64, f64) = (0.0, 600.0);
+/// The scene is stepped from t = 0 to `time_s` when the slide is first shown (every fish, at the
+/// scene's fixed step): 10 s is 600 steps of the whole school, about seconds of CPU.
+pub const TIME_RANGE_S: (f64, f64) = (0.0, 10.0);
 pub const HEIGHT_RANGE: (f64, f64) = (0.1, 1.0);
 
 impl SceneSpec {

@@ -20,7 +20,8 @@ pub use gpu::SceneGpu;
 
 use super::{Param, SlideWidget, style};
 use crate::deck::widgets::scene::{
-    DISTANCE_RANGE_M, PITCH_RANGE_DEG, SceneSpec, SceneToggles, SceneView, YAW_RANGE_DEG,
+    DISTANCE_RANGE_M, PITCH_RANGE_DEG, SceneSpec, SceneToggles, SceneView, TIME_RANGE_S,
+    YAW_RANGE_DEG,
 };
 use crate::render::{DebugView, RenderSettings};
 use crate::scene::SceneSim;
@@ -163,7 +164,7 @@ impl SceneWidget {
             let due = self.last_time.is_none_or(|t| now - t >= 1.0 / PLAYING_FPS);
             match self.last_time {
                 None => {
-                    sim.set_time(self.spec.time_s);
+                    sim.set_time(self.spec.time_s.clamp(TIME_RANGE_S.0, TIME_RANGE_S.1));
                     self.last_time = Some(now);
                 }
                 Some(t) if due => {
@@ -176,7 +177,7 @@ impl SceneWidget {
                 .request_repaint_after(std::time::Duration::from_secs_f64(1.0 / PLAYING_FPS));
         } else {
             self.last_time = None;
-            let wanted = self.spec.time_s.clamp(0.0, 600.0);
+            let wanted = self.spec.time_s.clamp(TIME_RANGE_S.0, TIME_RANGE_S.1);
             if (sim.time_secs() - wanted).abs() > 0.5 * sim.dt_secs() {
                 sim.set_time(wanted);
             }
