@@ -75,6 +75,40 @@ fn budgets_add_up_to_fifteen_minutes_and_every_slide_has_notes() {
     );
 }
 
+/// One optional slide per technique the students' project asks for, each showing the live
+/// scene (a `Scene` widget), after the exercise and before the final scene slide.
+#[test]
+fn the_project_slides_are_optional_and_show_the_live_scene() {
+    let d = deck();
+    let project: Vec<&Slide> = d
+        .slides
+        .iter()
+        .filter(|s| s.id.as_deref().is_some_and(|i| i.starts_with("project-")))
+        .collect();
+    assert_eq!(
+        project.len(),
+        6,
+        "draw call, env map, normal map, shadows, BRDF, particles"
+    );
+    for s in project {
+        assert!(
+            s.skip,
+            "{}: optional (skip: true), outside the 15:00 plan",
+            s.title
+        );
+        let scenes = blocks(s)
+            .into_iter()
+            .filter(|b| {
+                matches!(
+                    b,
+                    Block::Widget(lectern::deck::widgets::WidgetSpec::Scene(_))
+                )
+            })
+            .count();
+        assert!(scenes >= 1, "{}: shows the live scene", s.title);
+    }
+}
+
 fn blocks(slide: &Slide) -> Vec<&Block> {
     fn walk<'a>(b: &'a Block, out: &mut Vec<&'a Block>) {
         out.push(b);
