@@ -244,3 +244,29 @@ fn renders_only_on_change_and_costs_nothing_on_other_slides() {
     draw(&mut w);
     assert_eq!(w.frames_rendered(), 3, "so does the camera");
 }
+
+/// Ctrl+S writes a presenter's toggle and camera tweaks back into the deck, changing only those
+/// values' bytes.
+#[test]
+fn toggles_and_camera_write_back_to_the_deck() {
+    use lectern::app::tweaks::write_back;
+    use lectern::widgets::ParamSnapshot;
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir_all(dir.path().join("slides")).unwrap();
+    let path = dir.path().join("slides/deck.ron");
+    let original = "(\n  title: \"t\",\n  slides: [\n    (id: \"s\", title: \"s\", body: [\n      Widget(Scene((toggles: (shadows: true), camera: (yaw_deg: 20.0, pitch_deg: 35.0)))),\n    ]),\n  ],\n)\n";
+    std::fs::write(&path, original).unwrap();
+    let deck = lectern::deck::load_deck(&path).unwrap();
+    let slide = deck.slides[0].clone();
+    let mut state = lectern::app::SlideState::default();
+    state.ensure_widgets(&slide);
+    state.set_param(&[0], "toggles.shadows", ParamSnapshot::Bool(false));
+    state.set_param(&[0], "camera.yaw_deg", ParamSnapshot::F64(45.0));
+    assert_eq!(write_back(&path, &slide, &mut state), Ok(2));
+    assert_eq!(
+        std::fs::read_to_string(&path).unwrap(),
+        original
+            .replace("shadows: true", "shadows: false")
+            .replace("yaw_deg: 20.0", "yaw_deg: 45.0")
+    );
+}
