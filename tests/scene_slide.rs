@@ -270,3 +270,36 @@ fn toggles_and_camera_write_back_to_the_deck() {
             .replace("yaw_deg: 20.0", "yaw_deg: 45.0")
     );
 }
+
+/// Scene mode shows the same picture too (one renderer type, two targets): its window frame,
+/// below the frame-time line, equals `render-scene`'s at t = 0 within the golden tolerance.
+/// (Through an sRGB view egui showed it decoded twice: 99 % of pixels off.)
+#[test]
+fn scene_mode_shows_the_same_pixels_as_render_scene() {
+    let size = (640, 360);
+    let mut off = OffscreenRenderer::software_first().unwrap();
+    let rs = off.render_state().clone();
+    let mut mode =
+        lectern::app::SceneMode::new(&rs, &root().join("scenes/water.ron"), || {}).unwrap();
+    mode.paused = true;
+    mode.controls_button = false;
+    let got = off
+        .render([size.0, size.1], 1.0, |ui| {
+            egui::CentralPanel::default()
+                .frame(egui::Frame::NONE)
+                .show(ui, |ui| mode.ui(ui, &rs));
+        })
+        .unwrap();
+    let mut spec = SceneSpec::default();
+    let scene = lectern::scene::load_scene(&root().join("scenes/water.ron")).unwrap();
+    spec.camera = SceneCameraSpec {
+        yaw_deg: Some(scene.camera.yaw_deg as f64),
+        pitch_deg: Some(scene.camera.pitch_deg as f64),
+        distance: Some(scene.camera.distance as f64),
+    };
+    let want = headless_frame(&spec, size);
+    // below the frame-time text scene mode writes over its top left
+    let crop = |img: &image::RgbaImage| image::imageops::crop_imm(img, 0, 40, 640, 320).to_image();
+    let (ok, off, mean) = within_tolerance(&crop(&got), &crop(&want));
+    assert!(ok, "{:.3} % of pixels off, mean {mean:.3}", off * 100.0);
+}
