@@ -15,6 +15,7 @@ use egui_kittest::{Harness, SnapshotOptions};
 use lectern::app::{SlideState, slide_ui};
 use lectern::deck::{Block, Deck, Slide, load_deck};
 use lectern::math::{MathSyntax, render_formula};
+use lectern::widgets::scene::SceneGpu;
 use lectern::widgets::work_precision;
 
 fn deck() -> Deck {
@@ -24,12 +25,11 @@ fn deck() -> Deck {
 #[test]
 fn budgets_add_up_to_fifteen_minutes_and_every_slide_has_notes() {
     let d = deck();
-    let total: f32 = d
-        .slides
-        .iter()
-        .map(|s| s.seconds.expect("every slide has a budget"))
-        .sum();
-    assert_eq!(total, 900.0);
+    for s in &d.slides {
+        assert!(s.seconds.is_some(), "{}: a budget", s.title);
+    }
+    // optional (`skip: true`) slides are not part of the plan
+    assert_eq!(d.planned_secs(), 900.0);
     for s in &d.slides {
         assert!(s.notes.len() > 10, "{}: speaker notes", s.title);
         assert!(s.id.is_some(), "{}: id", s.title);
@@ -52,6 +52,14 @@ fn budgets_add_up_to_fifteen_minutes_and_every_slide_has_notes() {
         "rotation",
         "inertia",
         "simulation",
+        "exercise",
+        "project-draw-call",
+        "project-env-map",
+        "project-normal-map",
+        "project-shadow-map",
+        "project-brdf",
+        "project-particles",
+        "project-caustics",
         "scene",
     ];
     let pos: Vec<usize> = order
@@ -66,6 +74,40 @@ fn budgets_add_up_to_fifteen_minutes_and_every_slide_has_notes() {
         pos.windows(2).all(|w| w[0] < w[1]),
         "slides out of the notes' order: {ids:?}"
     );
+}
+
+/// One optional slide per technique the students' project asks for, each showing the live
+/// scene (a `Scene` widget), after the exercise and before the final scene slide.
+#[test]
+fn the_project_slides_are_optional_and_show_the_live_scene() {
+    let d = deck();
+    let project: Vec<&Slide> = d
+        .slides
+        .iter()
+        .filter(|s| s.id.as_deref().is_some_and(|i| i.starts_with("project-")))
+        .collect();
+    assert_eq!(
+        project.len(),
+        7,
+        "draw call, env map, normal map, shadows, BRDF, particles, the GPU Gems article (caustics)"
+    );
+    for s in project {
+        assert!(
+            s.skip,
+            "{}: optional (skip: true), outside the 15:00 plan",
+            s.title
+        );
+        let scenes = blocks(s)
+            .into_iter()
+            .filter(|b| {
+                matches!(
+                    b,
+                    Block::Widget(lectern::deck::widgets::WidgetSpec::Scene(_))
+                )
+            })
+            .count();
+        assert!(scenes >= 1, "{}: shows the live scene", s.title);
+    }
 }
 
 fn blocks(slide: &Slide) -> Vec<&Block> {
@@ -115,9 +157,16 @@ fn every_slide_matches_its_snapshot() {
         );
         let deck = deck.clone();
         let mut state = SlideState::default();
+        // Scene widgets render on the harness's own device, at the deck's `time_s`.
+        let rs = egui_kittest::wgpu::create_render_state(
+            egui_kittest::wgpu::default_wgpu_setup(),
+            egui_wgpu::RendererOptions::PREDICTABLE,
+        );
+        let gpu = rs.clone();
         let mut h = Harness::builder()
             .with_size(SIZE)
-            .wgpu()
+            .renderer(egui_kittest::wgpu::WgpuTestRenderer::from_render_state(rs))
+            .with_context_setup(move |ctx| SceneGpu::install(ctx, gpu, 1.0, false))
             .build_ui(move |ui| {
                 slide_ui(ui, &deck, n, &mut state);
             });

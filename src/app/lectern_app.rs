@@ -406,6 +406,13 @@ impl eframe::App for LecternApp {
             });
             self.ink.set_plain_edges(software);
         }
+        // Scene widgets on slides render on the window's device and animate there.
+        if let Some(rs) = &self.render_state
+            && crate::widgets::scene::SceneGpu::get(ui.ctx()).is_none()
+        {
+            let scale = crate::widgets::scene::SceneGpu::render_scale_for(&rs.adapter);
+            crate::widgets::scene::SceneGpu::install(ui.ctx(), rs.clone(), scale, true);
+        }
         self.window_clear = true;
         self.frame_ui(ui);
     }

@@ -99,6 +99,8 @@ impl OffscreenRenderer {
             style.animation_time = 0.0;
             style.visuals.text_cursor.blink = false;
         });
+        // Scene widgets render on this device, at full size and at their deck's `time_s`.
+        crate::widgets::scene::SceneGpu::install(&ctx, render_state.clone(), 1.0, false);
         Ok(Self { render_state, ctx })
     }
 

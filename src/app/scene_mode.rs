@@ -16,6 +16,8 @@ use crate::render::{RenderSettings, Renderer};
 use crate::scene::{self, FrameSnapshot, QualityController, Scene, SceneSim};
 
 const OUTPUT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+/// The same bytes as egui reads them.
+const EGUI_VIEW_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 
 /// The texture the renderer draws into, registered with egui once (and updated in place when
 /// the size changes, so egui's texture list does not grow).
@@ -324,23 +326,31 @@ impl SceneMode {
             dimension: wgpu::TextureDimension::D2,
             format: OUTPUT_FORMAT,
             usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
-            view_formats: &[],
+            view_formats: &[EGUI_VIEW_FORMAT],
         });
         let view = texture.create_view(&Default::default());
+        // egui reads native textures as gamma-encoded Rgba8Unorm: through an sRGB view the
+        // picture would be decoded twice and shown too dark (as `widgets::scene` does too).
+        let egui_view = texture.create_view(&wgpu::TextureViewDescriptor {
+            format: Some(EGUI_VIEW_FORMAT),
+            ..Default::default()
+        });
         let mut egui_renderer = rs.renderer.write();
         let id = match &self.output {
             Some(o) => {
                 egui_renderer.update_egui_texture_from_wgpu_texture(
                     &rs.device,
-                    &view,
+                    &egui_view,
                     wgpu::FilterMode::Linear,
                     o.id,
                 );
                 o.id
             }
-            None => {
-                egui_renderer.register_native_texture(&rs.device, &view, wgpu::FilterMode::Linear)
-            }
+            None => egui_renderer.register_native_texture(
+                &rs.device,
+                &egui_view,
+                wgpu::FilterMode::Linear,
+            ),
         };
         self.output = Some(Output {
             size,

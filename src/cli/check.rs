@@ -58,7 +58,7 @@ impl Kind {
 #[derive(Debug, Default)]
 pub struct Report {
     pub problems: Vec<Diagnostic>,
-    /// `slides/lecture.ron: 19 slides, 15:00 planned`
+    /// `slides/lecture.ron: 26 slides, 15:00 planned`
     pub deck_lines: Vec<String>,
     pub counts: [usize; 5],
 }

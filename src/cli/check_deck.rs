@@ -180,6 +180,18 @@ impl Walk<'_> {
     fn widget(&mut self, spec: &WidgetSpec, at: &str) {
         match spec {
             WidgetSpec::SimulationLoop(s) => self.simulation_body(&s.scene, s.body, at),
+            // the scene file itself is checked with the deck's files
+            WidgetSpec::Scene(s) => {
+                for (field, message) in s.range_problems() {
+                    let value_at = format!("{at}.{field}");
+                    let value_at = if self.node(&value_at).is_some() {
+                        value_at
+                    } else {
+                        at.to_owned()
+                    };
+                    self.at(&value_at, format!("scene: {message}"));
+                }
+            }
             WidgetSpec::Stability(s) => {
                 for (k, t) in s.tableaux.iter().enumerate() {
                     if let Err((value, m)) = t.validate_at() {
@@ -230,7 +242,11 @@ impl Walk<'_> {
             } else {
                 at.to_owned()
             };
-            self.at(&path, message);
+            let d = Diagnostic::at_value(self.tree, self.text, self.file, &path, message);
+            // a widget's own check may have said it already, in its words: one fault, one line
+            if !(self.problems.iter()).any(|p| (p.line, p.col) == (d.line, d.col)) {
+                self.push(d);
+            }
         }
     }
 
@@ -362,6 +378,21 @@ mod tests {
             p[0]
         );
         assert!(p[1].message.contains("fish = 400"), "{}", p[1]);
+    }
+
+    #[test]
+    fn the_scene_widget_file_and_ranges() {
+        let p = check(&deck(concat!(
+            "      Widget(Scene((scene: \"../scenes/nope.ron\"))),\n",
+            "      Widget(Scene((camera: (pitch_deg: 95.0), height: 0.0))),\n",
+            "      Widget(Scene((view: Normals, time_s: 2.5))),",
+        )));
+        let at: Vec<(usize, usize)> = p.iter().map(|d| (d.line, d.col)).collect();
+        // the missing file at its path's first character, the values at themselves
+        assert_eq!(at, [(5, 29), (6, 41), (6, 56)], "{p:?}");
+        assert!(p[0].message.contains("no such file"), "{}", p[0]);
+        assert!(p[1].message.contains("pitch 95"), "{}", p[1]);
+        assert!(p[2].message.contains("height 0"), "{}", p[2]);
     }
 
     #[test]

@@ -1,4 +1,5 @@
-//! Every file a deck names — pictures (`Image(path: ..)`), the scene of a `SimulationLoop` —
+//! Every file a deck names — pictures (`Image(path: ..)`), the scene of a `SimulationLoop` or a
+//! `Scene` —
 //! resolved through [`crate::paths`] (inside the project only), for `lectern check`, with each
 //! problem at the line and column of the path string. (Problem and tableau files that widgets
 //! name in `ode:` and `methods:` are checked while loading: `Deck::widget_problems`.)
@@ -38,6 +39,11 @@ pub fn file_refs(deck: &Deck) -> Vec<FileRef<'_>> {
                     written: path,
                 }),
                 Block::Widget(WidgetSpec::SimulationLoop(s)) => out.push(FileRef {
+                    kind: FileKind::Scene,
+                    ron_path: format!("{here}.scene"),
+                    written: &s.scene,
+                }),
+                Block::Widget(WidgetSpec::Scene(s)) => out.push(FileRef {
                     kind: FileKind::Scene,
                     ron_path: format!("{here}.scene"),
                     written: &s.scene,

@@ -49,6 +49,7 @@ pub mod neptune;
 pub mod parallel_transport;
 pub mod params;
 pub mod rigid_body;
+pub mod scene;
 pub mod simulation_loop;
 pub mod slope_field;
 pub mod spiral;
@@ -147,6 +148,10 @@ impl WidgetSpec {
                 Box::new(parallel_transport::ParallelTransport::new(s.clone()))
             }
             WidgetSpec::SimulationLoop(s) => Box::new(simulation_loop::SimulationLoop::new_in(
+                s.clone(),
+                deck_path.and_then(std::path::Path::parent),
+            )),
+            WidgetSpec::Scene(s) => Box::new(scene::SceneWidget::new_in(
                 s.clone(),
                 deck_path.and_then(std::path::Path::parent),
             )),

@@ -9,6 +9,7 @@ pub mod neptune;
 pub mod ode;
 pub mod parallel_transport;
 pub mod rigid_body;
+pub mod scene;
 pub mod simulation_loop;
 pub mod slope_field;
 pub mod spiral;
@@ -23,6 +24,7 @@ pub use neptune::NeptuneSpec;
 pub use ode::{LoadedOde, OdeError, OdeSource};
 pub use parallel_transport::ParallelTransportSpec;
 pub use rigid_body::RigidBodySpec;
+pub use scene::SceneSpec;
 pub use simulation_loop::SimulationLoopSpec;
 pub use slope_field::SlopeFieldSpec;
 pub use spiral::SpiralSpec;
@@ -56,6 +58,8 @@ pub enum WidgetSpec {
     ParallelTransport(ParallelTransportSpec),
     /// 11. The simulation loop of a floating body, drawn as a cycle with live numbers.
     SimulationLoop(SimulationLoopSpec),
+    /// 12. The live water scene (or a debug view) with its techniques and camera from the deck.
+    Scene(SceneSpec),
 }
 
 impl WidgetSpec {
@@ -73,6 +77,7 @@ impl WidgetSpec {
             WidgetSpec::RigidBody(_) => "rigid-body",
             WidgetSpec::ParallelTransport(_) => "parallel-transport",
             WidgetSpec::SimulationLoop(_) => "simulation-loop",
+            WidgetSpec::Scene(_) => "scene",
         }
     }
 }
@@ -91,7 +96,8 @@ impl WidgetSpec {
             | WidgetSpec::Stability(_)
             | WidgetSpec::RigidBody(_)
             | WidgetSpec::ParallelTransport(_)
-            | WidgetSpec::SimulationLoop(_) => None,
+            | WidgetSpec::SimulationLoop(_)
+            | WidgetSpec::Scene(_) => None,
         }
     }
 
@@ -108,7 +114,8 @@ impl WidgetSpec {
             WidgetSpec::Taylor(_)
             | WidgetSpec::RigidBody(_)
             | WidgetSpec::ParallelTransport(_)
-            | WidgetSpec::SimulationLoop(_) => &[],
+            | WidgetSpec::SimulationLoop(_)
+            | WidgetSpec::Scene(_) => &[],
         }
     }
 }

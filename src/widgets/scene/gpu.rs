@@ -1,0 +1,209 @@
+//! The wgpu side of the Scene widget: egui's device and the scene renderers made on it
+//! ([`SceneGpu`], shared through the egui context), and the texture a widget's frame is rendered
+//! into and egui shows ([`Output`]).
+
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex};
+
+use crate::render::Renderer;
+use crate::scene::Scene;
+
+/// The format the scene is rendered in (as scene mode and `render-scene`).
+pub(super) const OUTPUT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+/// The same bytes as egui reads them.
+const EGUI_VIEW_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
+
+/// egui's wgpu device and the scene renderers made on it, shared through the egui context.
+#[derive(Clone)]
+pub struct SceneGpu {
+    pub render_state: egui_wgpu::RenderState,
+    /// The fraction of the widget's pixels the scene is drawn at, each way (scaled up by the
+    /// tone-mapping pass): below 1 in a window on a software adapter, 1 for export and tests.
+    pub render_scale: f32,
+    /// Whether `playing` widgets advance with the clock (the window); exports and snapshots
+    /// always show the deck's `time_s`.
+    pub animate: bool,
+    renderers: Arc<Mutex<Vec<SharedRenderer>>>,
+}
+
+struct SharedRenderer {
+    scene_path: PathBuf,
+    /// the scene the renderer's meshes and materials were built from
+    scene: Scene,
+    renderer: Renderer,
+}
+
+impl SceneGpu {
+    /// Makes the device reachable from every Scene widget drawn with `ctx`.
+    pub fn install(
+        ctx: &egui::Context,
+        render_state: egui_wgpu::RenderState,
+        render_scale: f32,
+        animate: bool,
+    ) {
+        let gpu = Self {
+            render_state,
+            render_scale: render_scale.clamp(0.25, 1.0),
+            animate,
+            renderers: Arc::default(),
+        };
+        ctx.data_mut(|d| d.insert_temp(egui::Id::NULL.with("lectern-scene-gpu"), gpu));
+    }
+
+    pub fn get(ctx: &egui::Context) -> Option<Self> {
+        ctx.data(|d| d.get_temp::<Self>(egui::Id::NULL.with("lectern-scene-gpu")))
+    }
+
+    /// The window's choice: a software adapter draws the scene at half size.
+    pub fn render_scale_for(adapter: &wgpu::Adapter) -> f32 {
+        if adapter.get_info().device_type == wgpu::DeviceType::Cpu {
+            0.5
+        } else {
+            1.0
+        }
+    }
+
+    /// How many scene renderers exist (one per scene file some Scene widget has drawn).
+    pub fn renderer_count(&self) -> usize {
+        self.renderers.lock().map_or(0, |all| all.len())
+    }
+
+    /// Runs `draw` with the renderer of `scene_path` (made on first use; its meshes rebuilt when
+    /// the scene changed).
+    pub(super) fn with_renderer<R>(
+        &self,
+        scene_path: &Path,
+        scene: &Scene,
+        draw: impl FnOnce(&mut Renderer) -> R,
+    ) -> Result<R, String> {
+        let mut all = self
+            .renderers
+            .lock()
+            .map_err(|_| "the scene renderer failed earlier".to_owned())?;
+        let index = match all.iter().position(|r| r.scene_path == scene_path) {
+            Some(i) => i,
+            None => {
+                let started = std::time::Instant::now();
+                let root = scene_path
+                    .parent()
+                    .and_then(Path::parent)
+                    .unwrap_or(Path::new(""));
+                let rs = &self.render_state;
+                let renderer = Renderer::new(
+                    &rs.device,
+                    &rs.queue,
+                    &root.join(crate::render::SHADER_DIR),
+                    scene,
+                    OUTPUT_FORMAT,
+                )
+                .map_err(|e| format!("the scene renderer could not start: {e:#}"))?;
+                tracing::debug!("scene renderer for slides made in {:?}", started.elapsed());
+                all.push(SharedRenderer {
+                    scene_path: scene_path.to_path_buf(),
+                    scene: scene.clone(),
+                    renderer,
+                });
+                all.len() - 1
+            }
+        };
+        let shared = &mut all[index];
+        if shared.scene != *scene {
+            shared.renderer.set_scene(scene);
+            shared.scene = scene.clone();
+        }
+        Ok(draw(&mut shared.renderer))
+    }
+}
+
+/// The texture the scene is rendered into, registered with egui once.
+pub(super) struct Output {
+    render_state: egui_wgpu::RenderState,
+    pub(super) size: (u32, u32),
+    _texture: wgpu::Texture,
+    pub(super) view: wgpu::TextureView,
+    pub(super) id: egui::TextureId,
+    /// false once the id has been handed to a larger texture
+    owns_id: bool,
+}
+
+impl Output {
+    /// The output texture, at least `size` pixels (grown, never shrunk: the presenter's smaller
+    /// copy of the slide shows the same frame scaled down instead of rendering its own).
+    pub(super) fn ensure(
+        current: &mut Option<Output>,
+        rs: &egui_wgpu::RenderState,
+        size: (u32, u32),
+    ) -> bool {
+        if let Some(o) = current.as_ref()
+            && o.size.0 >= size.0
+            && o.size.1 >= size.1
+        {
+            return false;
+        }
+        let size = match current.as_ref() {
+            Some(o) => (o.size.0.max(size.0), o.size.1.max(size.1)),
+            None => size,
+        };
+        let texture = rs.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("scene on a slide"),
+            size: wgpu::Extent3d {
+                width: size.0,
+                height: size.1,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: OUTPUT_FORMAT,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[EGUI_VIEW_FORMAT],
+        });
+        let view = texture.create_view(&Default::default());
+        // egui treats a texture's values as gamma-encoded: it samples the same bytes through a
+        // plain (non-sRGB) view, else the picture comes out decoded twice, too dark.
+        let egui_view = texture.create_view(&wgpu::TextureViewDescriptor {
+            format: Some(EGUI_VIEW_FORMAT),
+            ..Default::default()
+        });
+        let id = {
+            let mut egui_renderer = rs.renderer.write();
+            match current.as_ref() {
+                Some(o) => {
+                    egui_renderer.update_egui_texture_from_wgpu_texture(
+                        &rs.device,
+                        &egui_view,
+                        wgpu::FilterMode::Linear,
+                        o.id,
+                    );
+                    o.id
+                }
+                None => egui_renderer.register_native_texture(
+                    &rs.device,
+                    &egui_view,
+                    wgpu::FilterMode::Linear,
+                ),
+            }
+        };
+        if let Some(mut old) = current.take() {
+            // the id now names the new texture: do not free it with the old one
+            old.owns_id = false;
+        }
+        *current = Some(Output {
+            render_state: rs.clone(),
+            size,
+            _texture: texture,
+            view,
+            id,
+            owns_id: true,
+        });
+        true
+    }
+}
+
+impl Drop for Output {
+    fn drop(&mut self) {
+        if self.owns_id {
+            self.render_state.renderer.write().free_texture(&self.id);
+        }
+    }
+}

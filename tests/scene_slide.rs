@@ -1,0 +1,305 @@
+//! The water scene on a slide (`Widget(Scene(..))`): the widget's pixels equal
+//! `lectern render-scene`'s (`render::Headless`) with the same camera, toggles, time and size,
+//! within the scene goldens' tolerance; the toggles and the view reach the picture; a snapshot of
+//! the widget in a kittest harness; a missing scene file is reported, not panicked on.
+//!
+//! Record the snapshot with `UPDATE_SNAPSHOTS=1 cargo test --test scene_slide` (then look).
+
+use std::path::{Path, PathBuf};
+
+use egui_kittest::{Harness, SnapshotOptions};
+use lectern::app::OffscreenRenderer;
+use lectern::deck::widgets::scene::{SceneCameraSpec, SceneSpec, SceneToggles, SceneView};
+use lectern::render::Headless;
+use lectern::widgets::SlideWidget;
+use lectern::widgets::scene::{SceneGpu, SceneWidget, render_settings};
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// The scene goldens' tolerance (tests/render_scene.rs): a channel may differ by 2/255, at most
+/// 0.1 % of pixels beyond that, and a mean channel difference of at most 0.1.
+fn within_tolerance(a: &image::RgbaImage, b: &image::RgbaImage) -> (bool, f64, f64) {
+    assert_eq!(a.dimensions(), b.dimensions());
+    let (mut off, mut sum) = (0usize, 0u64);
+    for (p, q) in a.pixels().zip(b.pixels()) {
+        let d = (0..3).map(|c| p[c].abs_diff(q[c])).max().unwrap();
+        sum += (0..3).map(|c| p[c].abs_diff(q[c]) as u64).sum::<u64>();
+        off += usize::from(d > 2);
+    }
+    let n = (a.width() * a.height()) as f64;
+    let (off, mean) = (off as f64 / n, sum as f64 / (3.0 * n));
+    (off <= 0.001 && mean <= 0.1, off, mean)
+}
+
+fn spec() -> SceneSpec {
+    SceneSpec {
+        view: SceneView::Final,
+        toggles: SceneToggles {
+            normal_maps: Some(false),
+            ..Default::default()
+        },
+        camera: SceneCameraSpec {
+            yaw_deg: Some(20.0),
+            pitch_deg: Some(35.0),
+            distance: Some(10.0),
+        },
+        time_s: 0.5,
+        ..Default::default()
+    }
+}
+
+/// What `lectern render-scene --time T` draws with the spec's settings and camera.
+fn headless_frame(spec: &SceneSpec, size: (u32, u32)) -> image::RgbaImage {
+    let scene = lectern::scene::load_scene(&root().join("scenes/water.ron")).unwrap();
+    let mut h = Headless::new(scene, &root().join("shaders")).unwrap();
+    h.settings = render_settings(spec, 1.0);
+    h.sim.camera.yaw_deg = spec.camera.yaw_deg.unwrap() as f32;
+    h.sim.camera.pitch_deg = spec.camera.pitch_deg.unwrap() as f32;
+    h.sim.camera.distance = spec.camera.distance.unwrap() as f32;
+    h.sim.set_time(spec.time_s);
+    h.render(size).unwrap()
+}
+
+/// The widget drawn alone, filling a 640×360 image at one pixel per point, through the same
+/// offscreen path as `lectern export`.
+fn widget_frame(spec: &SceneSpec, size: (u32, u32)) -> image::RgbaImage {
+    let mut off = OffscreenRenderer::software_first().unwrap();
+    let mut w = SceneWidget::new_in(spec.clone(), Some(&root().join("slides")));
+    let img = off
+        .render([size.0, size.1], 1.0, |ui| {
+            egui::CentralPanel::default()
+                .frame(egui::Frame::NONE)
+                .show(ui, |ui| w.ui(ui));
+        })
+        .unwrap();
+    assert!(w.problems().is_empty(), "{:?}", w.problems());
+    let t = w.sim().unwrap().time_secs();
+    assert!((t - spec.time_s).abs() < 1e-3, "the widget shows t = {t}");
+    img
+}
+
+#[test]
+fn the_slide_shows_the_same_pixels_as_render_scene() {
+    let size = (640, 360);
+    let s = spec();
+    let got = widget_frame(&s, size);
+    let want = headless_frame(&s, size);
+    let (ok, off, mean) = within_tolerance(&got, &want);
+    if !ok {
+        got.save("target/scene-slide-widget.png").unwrap();
+        want.save("target/scene-slide-headless.png").unwrap();
+    }
+    assert!(
+        ok,
+        "{:.3} % of pixels off, mean {mean:.3} (target/scene-slide-*.png)",
+        off * 100.0
+    );
+    // … and the comparison sees a toggle: the headless frame with normal maps on differs
+    let mut on = s.clone();
+    on.toggles.normal_maps = Some(true);
+    let (same, off, mean) = within_tolerance(&got, &headless_frame(&on, size));
+    assert!(!same, "normal maps on must differ: {off} {mean}");
+}
+
+#[test]
+fn view_and_toggles_reach_the_render_settings() {
+    let mut s = spec();
+    s.view = SceneView::ShadowMap;
+    s.toggles.shadows = Some(false);
+    let r = render_settings(&s, 0.5);
+    assert_eq!(r.debug_view, lectern::render::DebugView::ShadowMap);
+    assert!(!r.shadows && !r.normal_maps);
+    // unset toggles keep the renderer's default: on
+    assert!(r.env_map && r.brdf && r.fresnel);
+    assert_eq!(r.render_scale, 0.5);
+}
+
+#[test]
+fn presenter_toggles_are_params_and_write_back_as_the_spec() {
+    let mut w = SceneWidget::new_in(spec(), Some(&root().join("slides")));
+    let ids: Vec<String> = w.params().iter().map(|p| p.id.clone()).collect();
+    for id in [
+        "toggles.env_map",
+        "toggles.normal_maps",
+        "toggles.shadows",
+        "toggles.brdf",
+        "toggles.fresnel",
+        "camera.yaw_deg",
+        "camera.pitch_deg",
+        "camera.distance",
+        "playing",
+    ] {
+        assert!(ids.iter().any(|i| i == id), "{id} in {ids:?}");
+    }
+    for mut p in w.params() {
+        if p.id == "toggles.shadows" {
+            p.set(lectern::widgets::ParamSnapshot::Bool(false)).unwrap();
+        }
+    }
+    let lectern::widgets::WidgetSpec::Scene(now) = w.spec() else {
+        panic!("a Scene spec");
+    };
+    assert_eq!(now.toggles.shadows, Some(false));
+    assert!(!render_settings(&now, 1.0).shadows);
+    w.reset();
+    let lectern::widgets::WidgetSpec::Scene(back) = w.spec() else {
+        panic!("a Scene spec");
+    };
+    assert_eq!(back.toggles.shadows, None, "R gives the deck's values back");
+}
+
+#[test]
+fn a_missing_scene_is_a_problem_not_a_panic() {
+    let s = SceneSpec {
+        scene: "../scenes/nope.ron".into(),
+        ..Default::default()
+    };
+    let w = SceneWidget::new_in(s, Some(&root().join("slides")));
+    let p = w.problems();
+    assert_eq!(p.len(), 1, "{p:?}");
+    assert!(p[0].contains("nope.ron"), "{p:?}");
+    let s = SceneSpec {
+        scene: "../../../etc/passwd".into(),
+        ..Default::default()
+    };
+    let w = SceneWidget::new_in(s, Some(&root().join("slides")));
+    assert!(w.problems()[0].contains("outside the project"));
+}
+
+/// The widget in a kittest harness (as tests/slides.rs draws the deck): a shadow-map debug view
+/// beside nothing else, at 640×360.
+#[test]
+fn scene_widget_snapshot() {
+    let rs = egui_kittest::wgpu::create_render_state(
+        egui_kittest::wgpu::default_wgpu_setup(),
+        egui_wgpu::RendererOptions::PREDICTABLE,
+    );
+    let gpu_state = rs.clone();
+    let mut w = SceneWidget::new_in(
+        SceneSpec {
+            view: SceneView::ShadowMap,
+            ..spec()
+        },
+        Some(Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/slides"))),
+    );
+    let mut h = Harness::builder()
+        .with_size(egui::vec2(640.0, 360.0))
+        .renderer(egui_kittest::wgpu::WgpuTestRenderer::from_render_state(rs))
+        .with_context_setup(move |ctx| SceneGpu::install(ctx, gpu_state, 1.0, false))
+        .build_ui(move |ui| {
+            egui::CentralPanel::default()
+                .frame(egui::Frame::NONE)
+                .show(ui, |ui| w.ui(ui));
+        });
+    h.run_steps(2);
+    h.snapshot_options(
+        "widget-scene-shadow-map",
+        &SnapshotOptions::new().threshold(0.6).max_failed_pixels(8),
+    );
+}
+
+/// A frame is rendered only when the picture changes, and slides without a Scene widget never
+/// make a scene renderer; every Scene widget on every slide shares one.
+#[test]
+fn renders_only_on_change_and_costs_nothing_on_other_slides() {
+    let mut off = OffscreenRenderer::software_first().unwrap();
+    let gpu = SceneGpu::get(off.egui_ctx()).expect("offscreen installs the scene device");
+    let deck = lectern::deck::load_deck(&root().join("slides/lecture.ron")).unwrap();
+    let index = |id: &str| {
+        deck.slides
+            .iter()
+            .position(|s| s.id.as_deref() == Some(id))
+            .unwrap()
+    };
+    let mut state = lectern::app::SlideState::default();
+    off.render_slide(&deck, index("euler"), &mut state, [640, 360])
+        .unwrap();
+    assert_eq!(gpu.renderer_count(), 0, "a slide without a scene");
+    for id in ["project-env-map", "project-shadow-map"] {
+        let mut state = lectern::app::SlideState::default();
+        off.render_slide(&deck, index(id), &mut state, [640, 360])
+            .unwrap();
+    }
+    assert_eq!(gpu.renderer_count(), 1, "four widgets, one renderer");
+
+    let mut w = SceneWidget::new_in(spec(), Some(&root().join("slides")));
+    let mut draw = |w: &mut SceneWidget| {
+        off.render([320, 180], 1.0, |ui| {
+            egui::CentralPanel::default()
+                .frame(egui::Frame::NONE)
+                .show(ui, |ui| w.ui(ui));
+        })
+        .unwrap()
+    };
+    draw(&mut w);
+    assert_eq!(w.frames_rendered(), 1, "three egui passes, one scene frame");
+    draw(&mut w);
+    assert_eq!(w.frames_rendered(), 1, "nothing changed");
+    w.spec.toggles.shadows = Some(false);
+    draw(&mut w);
+    assert_eq!(w.frames_rendered(), 2, "a toggle renders again");
+    w.spec.camera.yaw_deg = Some(21.0);
+    draw(&mut w);
+    assert_eq!(w.frames_rendered(), 3, "so does the camera");
+}
+
+/// Ctrl+S writes a presenter's toggle and camera tweaks back into the deck, changing only those
+/// values' bytes.
+#[test]
+fn toggles_and_camera_write_back_to_the_deck() {
+    use lectern::app::tweaks::write_back;
+    use lectern::widgets::ParamSnapshot;
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir_all(dir.path().join("slides")).unwrap();
+    let path = dir.path().join("slides/deck.ron");
+    let original = "(\n  title: \"t\",\n  slides: [\n    (id: \"s\", title: \"s\", body: [\n      Widget(Scene((toggles: (shadows: true), camera: (yaw_deg: 20.0, pitch_deg: 35.0)))),\n    ]),\n  ],\n)\n";
+    std::fs::write(&path, original).unwrap();
+    let deck = lectern::deck::load_deck(&path).unwrap();
+    let slide = deck.slides[0].clone();
+    let mut state = lectern::app::SlideState::default();
+    state.ensure_widgets(&slide);
+    state.set_param(&[0], "toggles.shadows", ParamSnapshot::Bool(false));
+    state.set_param(&[0], "camera.yaw_deg", ParamSnapshot::F64(45.0));
+    assert_eq!(write_back(&path, &slide, &mut state), Ok(2));
+    assert_eq!(
+        std::fs::read_to_string(&path).unwrap(),
+        original
+            .replace("shadows: true", "shadows: false")
+            .replace("yaw_deg: 20.0", "yaw_deg: 45.0")
+    );
+}
+
+/// Scene mode shows the same picture too (one renderer type, two targets): its window frame,
+/// below the frame-time line, equals `render-scene`'s at t = 0 within the golden tolerance.
+/// (Through an sRGB view egui showed it decoded twice: 99 % of pixels off.)
+#[test]
+fn scene_mode_shows_the_same_pixels_as_render_scene() {
+    let size = (640, 360);
+    let mut off = OffscreenRenderer::software_first().unwrap();
+    let rs = off.render_state().clone();
+    let mut mode =
+        lectern::app::SceneMode::new(&rs, &root().join("scenes/water.ron"), || {}).unwrap();
+    mode.paused = true;
+    mode.controls_button = false;
+    let got = off
+        .render([size.0, size.1], 1.0, |ui| {
+            egui::CentralPanel::default()
+                .frame(egui::Frame::NONE)
+                .show(ui, |ui| mode.ui(ui, &rs));
+        })
+        .unwrap();
+    let mut spec = SceneSpec::default();
+    let scene = lectern::scene::load_scene(&root().join("scenes/water.ron")).unwrap();
+    spec.camera = SceneCameraSpec {
+        yaw_deg: Some(scene.camera.yaw_deg as f64),
+        pitch_deg: Some(scene.camera.pitch_deg as f64),
+        distance: Some(scene.camera.distance as f64),
+    };
+    let want = headless_frame(&spec, size);
+    // below the frame-time text scene mode writes over its top left
+    let crop = |img: &image::RgbaImage| image::imageops::crop_imm(img, 0, 40, 640, 320).to_image();
+    let (ok, off, mean) = within_tolerance(&crop(&got), &crop(&want));
+    assert!(ok, "{:.3} % of pixels off, mean {mean:.3}", off * 100.0);
+}
