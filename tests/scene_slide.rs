@@ -303,3 +303,89 @@ fn scene_mode_shows_the_same_pixels_as_render_scene() {
     let (ok, off, mean) = within_tolerance(&crop(&got), &crop(&want));
     assert!(ok, "{:.3} % of pixels off, mean {mean:.3}", off * 100.0);
 }
+
+/// In the window the slides' scene reloads like scene mode: a saved shader redraws the picture,
+/// one that does not build keeps the last good pipelines and is named at its line on the
+/// presenter side, a saved scene file replaces the scene and one that does not parse keeps the
+/// last good scene.
+#[test]
+fn saved_shaders_and_scene_files_reach_the_slides() {
+    use std::cell::RefCell;
+    use std::rc::Rc;
+    use std::time::{Duration, Instant};
+    let dir = tempfile::tempdir().unwrap();
+    for sub in ["scenes", "shaders"] {
+        std::fs::create_dir_all(dir.path().join(sub)).unwrap();
+        for entry in std::fs::read_dir(root().join(sub)).unwrap() {
+            let from = entry.unwrap().path();
+            std::fs::copy(&from, dir.path().join(sub).join(from.file_name().unwrap())).unwrap();
+        }
+    }
+    std::fs::create_dir_all(dir.path().join("slides")).unwrap();
+    let rs = egui_kittest::wgpu::create_render_state(
+        egui_kittest::wgpu::default_wgpu_setup(),
+        egui_wgpu::RendererOptions::PREDICTABLE,
+    );
+    let gpu_state = rs.clone();
+    let w = Rc::new(RefCell::new(SceneWidget::new_in(
+        spec(),
+        Some(&dir.path().join("slides")),
+    )));
+    let shown = w.clone();
+    let mut h = Harness::builder()
+        .with_size(egui::vec2(320.0, 180.0))
+        .renderer(egui_kittest::wgpu::WgpuTestRenderer::from_render_state(rs))
+        // animate = the window: the files are watched
+        .with_context_setup(move |ctx| SceneGpu::install(ctx, gpu_state, 1.0, true))
+        .build_ui(move |ui| {
+            egui::CentralPanel::default()
+                .frame(egui::Frame::NONE)
+                .show(ui, |ui| shown.borrow_mut().ui(ui));
+        });
+    h.run_steps(2);
+    assert_eq!(w.borrow().frames_rendered(), 1);
+    let mut wait_for = |what: &str, done: &dyn Fn(&SceneWidget) -> bool| {
+        let start = Instant::now();
+        while !done(&w.borrow()) {
+            assert!(start.elapsed() < Duration::from_secs(10), "{what}");
+            std::thread::sleep(Duration::from_millis(50));
+            h.run_steps(1);
+        }
+    };
+    let water = dir.path().join("shaders/water.wgsl");
+    let good = std::fs::read_to_string(&water).unwrap();
+    std::fs::write(&water, format!("{good}\n// saved in class\n")).unwrap();
+    wait_for("a saved shader redraws", &|w| w.frames_rendered() == 2);
+    assert!(
+        w.borrow().problems().is_empty(),
+        "{:?}",
+        w.borrow().problems()
+    );
+
+    std::fs::write(&water, format!("{good}\nfn broken( {{\n")).unwrap();
+    wait_for("a broken shader is named", &|w| {
+        w.problems().iter().any(|p| p.contains("water.wgsl:"))
+    });
+
+    let scene_file = dir.path().join("scenes/water.ron");
+    let text = std::fs::read_to_string(&scene_file).unwrap();
+    let moved = text.replace("sun_size_deg: 1.2", "sun_size_deg: 2.5");
+    assert_ne!(moved, text);
+    std::fs::write(&water, &good).unwrap();
+    std::fs::write(&scene_file, &moved).unwrap();
+    wait_for("a saved scene replaces the scene", &|w| {
+        w.sim().is_some_and(|s| s.scene.sky.sun_size_deg == 2.5)
+    });
+    let frames = w.borrow().frames_rendered();
+    std::fs::write(&scene_file, "(sky: ").unwrap();
+    wait_for("a broken scene is named", &|w| {
+        w.problems().iter().any(|p| p.contains("water.ron"))
+    });
+    let w = w.borrow();
+    assert!(w.frames_rendered() > frames);
+    assert_eq!(
+        w.sim().unwrap().scene.sky.sun_size_deg,
+        2.5,
+        "the last good scene stays"
+    );
+}

@@ -5,8 +5,12 @@
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
+use crate::reload::DirWatcher;
 use crate::render::Renderer;
 use crate::scene::Scene;
+
+/// Quiet time after a save before the scene's files are re-read (as scene mode).
+const RELOAD_DEBOUNCE: std::time::Duration = std::time::Duration::from_millis(80);
 
 /// The format the scene is rendered in (as scene mode and `render-scene`).
 pub(super) const OUTPUT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
@@ -23,6 +27,10 @@ pub struct SceneGpu {
     /// Whether `playing` widgets advance with the clock (the window); exports and snapshots
     /// always show the deck's `time_s`.
     pub animate: bool,
+    /// Watch `shaders/` and the scene files in the window (exports and tests read them once).
+    watch_files: bool,
+    /// for the watcher to wake an idle window
+    ctx: egui::Context,
     renderers: Arc<Mutex<Vec<SharedRenderer>>>,
 }
 
@@ -31,6 +39,10 @@ struct SharedRenderer {
     /// the scene the renderer's meshes and materials were built from
     scene: Scene,
     renderer: Renderer,
+    /// the shader folder and the scene's folder, as scene mode watches them
+    watcher: Option<DirWatcher>,
+    /// bumped when a shader or the scene file changed on disk: frames drawn before are stale
+    generation: u64,
 }
 
 impl SceneGpu {
@@ -45,6 +57,8 @@ impl SceneGpu {
             render_state,
             render_scale: render_scale.clamp(0.25, 1.0),
             animate,
+            watch_files: animate,
+            ctx: ctx.clone(),
             renderers: Arc::default(),
         };
         ctx.data_mut(|d| d.insert_temp(egui::Id::NULL.with("lectern-scene-gpu"), gpu));
@@ -66,6 +80,53 @@ impl SceneGpu {
     /// How many scene renderers exist (one per scene file some Scene widget has drawn).
     pub fn renderer_count(&self) -> usize {
         self.renderers.lock().map_or(0, |all| all.len())
+    }
+
+    /// Applies saved shaders to the renderer of `scene_path` (the old pipelines stay when one
+    /// does not build) and returns its file generation, which changes whenever a shader or the
+    /// scene file was saved: a widget then reloads its scene and draws again. 0 before the
+    /// renderer exists.
+    pub(super) fn poll_files(&self, scene_path: &Path) -> u64 {
+        let Ok(mut all) = self.renderers.lock() else {
+            return 0;
+        };
+        let Some(shared) = all.iter_mut().find(|r| r.scene_path == scene_path) else {
+            return 0;
+        };
+        let Some(w) = &shared.watcher else {
+            return shared.generation;
+        };
+        let changed = w.poll();
+        let shaders: Vec<PathBuf> = (changed.iter())
+            .filter(|p| p.extension().is_some_and(|e| e == "wgsl"))
+            .cloned()
+            .collect();
+        if !shaders.is_empty() {
+            shared.renderer.reload_shaders(&shaders);
+        }
+        let scene_name = scene_path.file_name();
+        let scene_saved = changed.iter().any(|p| p.file_name() == scene_name);
+        if !shaders.is_empty() || scene_saved {
+            shared.generation += 1;
+        }
+        shared.generation
+    }
+
+    /// Shader errors of the renderer of `scene_path` (`file:line:col: message`), shown by the
+    /// widget while the last good pipelines keep drawing.
+    pub(super) fn shader_errors(&self, scene_path: &Path) -> Vec<String> {
+        let Ok(all) = self.renderers.lock() else {
+            return Vec::new();
+        };
+        (all.iter().find(|r| r.scene_path == scene_path))
+            .map(|r| {
+                r.renderer
+                    .shader_errors()
+                    .iter()
+                    .map(|d| d.to_string())
+                    .collect()
+            })
+            .unwrap_or_default()
     }
 
     /// Runs `draw` with the renderer of `scene_path` (made on first use; its meshes rebuilt when
@@ -98,10 +159,21 @@ impl SceneGpu {
                 )
                 .map_err(|e| format!("the scene renderer could not start: {e:#}"))?;
                 tracing::debug!("scene renderer for slides made in {:?}", started.elapsed());
+                let watcher = self.watch_files.then(|| {
+                    let ctx = self.ctx.clone();
+                    let shader_dir = root.join(crate::render::SHADER_DIR);
+                    let scene_dir = scene_path.parent().unwrap_or(Path::new("."));
+                    let wake = move || ctx.request_repaint();
+                    DirWatcher::new(&[&shader_dir, scene_dir], RELOAD_DEBOUNCE, wake)
+                        .map_err(|e| tracing::warn!("scene on slides: not watching files: {e}"))
+                        .ok()
+                });
                 all.push(SharedRenderer {
                     scene_path: scene_path.to_path_buf(),
                     scene: scene.clone(),
                     renderer,
+                    watcher: watcher.flatten(),
+                    generation: 0,
                 });
                 all.len() - 1
             }

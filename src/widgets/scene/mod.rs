@@ -37,6 +37,8 @@ struct FrameKey {
     camera: [f32; 3],
     steps_time_s: f64,
     size: (u32, u32),
+    /// the shaders and scene file as saved (see [`SceneGpu::poll_files`])
+    files_generation: u64,
 }
 
 pub struct SceneWidget {
@@ -50,6 +52,10 @@ pub struct SceneWidget {
     /// egui's clock at the last advanced frame while playing
     last_time: Option<f64>,
     frames_rendered: u64,
+    /// the generation of the scene's files the simulation was loaded at
+    files_generation: u64,
+    /// a saved scene file or shader that did not load: the last good one is still shown
+    reload_problems: Vec<String>,
 }
 
 fn debug_view(view: SceneView) -> DebugView {
@@ -139,6 +145,31 @@ impl SceneWidget {
             render_error: None,
             last_time: None,
             frames_rendered: 0,
+            files_generation: 0,
+            reload_problems: Vec::new(),
+        }
+    }
+
+    /// After a save of the scene file or a shader: the scene is read again (the last good one
+    /// stays when it does not parse) and the renderer's shader errors are kept for the presenter.
+    fn reload_files(&mut self, gpu: &SceneGpu) {
+        let Ok(path) = &self.scene_path else { return };
+        let generation = gpu.poll_files(path);
+        if generation == self.files_generation {
+            return;
+        }
+        self.files_generation = generation;
+        self.reload_problems = gpu.shader_errors(path);
+        match crate::scene::load_scene(path) {
+            Ok(scene) => {
+                let unchanged = self.sim.as_ref().is_ok_and(|s| s.scene == scene);
+                if !unchanged {
+                    // a new simulation; `prepare` puts it at the deck's time and camera
+                    self.sim = Ok(SceneSim::new(scene));
+                    self.last_time = None;
+                }
+            }
+            Err(d) => self.reload_problems.push(d.to_string()),
         }
     }
 
@@ -213,6 +244,7 @@ impl SceneWidget {
             ],
             steps_time_s: time_s,
             size,
+            files_generation: self.files_generation,
         };
         if self.drawn.as_ref() == Some(&key) {
             return;
@@ -275,6 +307,7 @@ impl SlideWidget for SceneWidget {
             let pitch = cam.pitch_deg.get_or_insert(30.0);
             *pitch = (*pitch + 0.3 * d.y as f64).clamp(PITCH_RANGE_DEG.0, PITCH_RANGE_DEG.1);
         }
+        self.reload_files(&gpu);
         let Some(time_s) = self.prepare(ui, &gpu) else {
             return;
         };
@@ -333,6 +366,8 @@ impl SlideWidget for SceneWidget {
     }
 
     fn problems(&self) -> Vec<String> {
-        self.problem().into_iter().collect()
+        let mut out: Vec<String> = self.problem().into_iter().collect();
+        out.extend(self.reload_problems.iter().cloned());
+        out
     }
 }
