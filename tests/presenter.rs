@@ -447,3 +447,55 @@ fn a_broken_tweaks_file_names_its_line_and_stale_entries_are_reported() {
     assert_eq!(problems.len(), 1, "{problems:?}");
     assert_eq!(state.param(&[0], H), Some(ParamSnapshot::F64(0.5)));
 }
+
+/// On an optional (`skip: true`) slide the presenter's timer says it is outside the plan, not
+/// "of 0:00".
+#[test]
+fn an_optional_slide_is_timed_outside_the_plan() {
+    use egui::epaint::Shape;
+    use egui_kittest::Harness;
+    let text = r#"(title: "T", slides: [
+        (title: "One", body: [Text("a")], seconds: 60),
+        (title: "Extra", body: [Text("b")], skip: true),
+    ])"#;
+    let deck = parse_deck(text, Path::new("t.ron")).unwrap();
+    let timer_lines = |index: usize| {
+        let mut p = Pacing::new(&deck);
+        p.tick(0.0);
+        p.goto(index, 5.0);
+        p.tick(12.0);
+        let mut states = DeckState::default();
+        let mut harness = Harness::builder()
+            .with_size([1280.0, 800.0])
+            .build_ui(|ui| {
+                let info = PresenterInfo::new(p.report(), &[], &[]);
+                presenter_ui(ui, &deck, index, &mut states, &info, None);
+            });
+        harness.run_steps(2);
+        let mut lines = Vec::new();
+        for clipped in &harness.output().shapes {
+            if let Shape::Text(t) = &clipped.shape
+                && t.galley.job.text.starts_with("this slide")
+            {
+                lines.push(t.galley.job.text.clone());
+            }
+        }
+        lines
+    };
+    let planned = timer_lines(0);
+    assert!(
+        planned.iter().any(|l| l.contains(" of 1:00")),
+        "{planned:?}"
+    );
+    let optional = timer_lines(1);
+    assert!(
+        optional
+            .iter()
+            .any(|l| l.contains("optional: outside the plan")),
+        "{optional:?}"
+    );
+    assert!(
+        !optional.iter().any(|l| l.contains("of 0:00")),
+        "{optional:?}"
+    );
+}

@@ -192,7 +192,7 @@ pub fn scipy_table(out: &mut String) {
                 m,
                 0.0,
                 x0,
-                6.283185307179586,
+                std::f64::consts::TAU,
                 opts,
             );
             (sol.f_evals, max_error(&sol.x, &x0))

@@ -219,13 +219,22 @@ pub fn presenter_ui(
         status.1,
     );
     y += text * 2.4;
-    for line in [
+    // an optional (skip: true) slide has no budget: say so rather than "of 0:00"
+    let this_slide = if p.slide_budget > 0.0 {
         format!(
             "this slide {} of {} ({} left)",
             clock(p.slide_elapsed),
             clock(p.slide_budget),
             clock(p.slide_left)
-        ),
+        )
+    } else {
+        format!(
+            "this slide {} (optional: outside the plan)",
+            clock(p.slide_elapsed)
+        )
+    };
+    for line in [
+        this_slide,
         format!(
             "talk {} of {} ({} left)",
             clock(p.total_elapsed),
