@@ -15,9 +15,7 @@ use crate::render::gpu::UncapturedErrors;
 use crate::render::{RenderSettings, Renderer};
 use crate::scene::{self, FrameSnapshot, QualityController, Scene, SceneSim};
 
-const OUTPUT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
-/// The same bytes as egui reads them.
-const EGUI_VIEW_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
+use crate::widgets::scene::gpu::{OUTPUT_FORMAT, SceneTexture, scene_texture};
 
 /// The texture the renderer draws into, registered with egui once (and updated in place when
 /// the size changes, so egui's texture list does not grow).
@@ -314,44 +312,8 @@ impl SceneMode {
         if self.output.as_ref().is_some_and(|o| o.size == size) {
             return;
         }
-        let texture = rs.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("scene view"),
-            size: wgpu::Extent3d {
-                width: size.0,
-                height: size.1,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: OUTPUT_FORMAT,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
-            view_formats: &[EGUI_VIEW_FORMAT],
-        });
-        let view = texture.create_view(&Default::default());
-        // egui reads native textures as gamma-encoded Rgba8Unorm: through an sRGB view the
-        // picture would be decoded twice and shown too dark (as `widgets::scene` does too).
-        let egui_view = texture.create_view(&wgpu::TextureViewDescriptor {
-            format: Some(EGUI_VIEW_FORMAT),
-            ..Default::default()
-        });
-        let mut egui_renderer = rs.renderer.write();
-        let id = match &self.output {
-            Some(o) => {
-                egui_renderer.update_egui_texture_from_wgpu_texture(
-                    &rs.device,
-                    &egui_view,
-                    wgpu::FilterMode::Linear,
-                    o.id,
-                );
-                o.id
-            }
-            None => egui_renderer.register_native_texture(
-                &rs.device,
-                &egui_view,
-                wgpu::FilterMode::Linear,
-            ),
-        };
+        let reuse = self.output.as_ref().map(|o| o.id);
+        let SceneTexture { texture, view, id } = scene_texture(rs, "scene view", size, reuse);
         self.output = Some(Output {
             size,
             _texture: texture,

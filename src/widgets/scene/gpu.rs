@@ -13,7 +13,7 @@ use crate::scene::Scene;
 const RELOAD_DEBOUNCE: std::time::Duration = std::time::Duration::from_millis(80);
 
 /// The format the scene is rendered in (as scene mode and `render-scene`).
-pub(super) const OUTPUT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+pub const OUTPUT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
 /// The same bytes as egui reads them.
 const EGUI_VIEW_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 
@@ -187,6 +187,61 @@ impl SceneGpu {
     }
 }
 
+/// A texture the scene renders into (`view`, sRGB) and the id egui shows the same bytes under.
+pub struct SceneTexture {
+    pub texture: wgpu::Texture,
+    pub view: wgpu::TextureView,
+    pub id: egui::TextureId,
+}
+
+/// Makes a `size` texture for the scene and hands it to egui: under `reuse` (the id of the
+/// texture it replaces, so the frame that shows it needs no new id) or a new id. Scene mode
+/// and the Scene widget both show the renderer's output this way.
+pub fn scene_texture(
+    rs: &egui_wgpu::RenderState,
+    label: &str,
+    size: (u32, u32),
+    reuse: Option<egui::TextureId>,
+) -> SceneTexture {
+    let texture = rs.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d {
+            width: size.0,
+            height: size.1,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: OUTPUT_FORMAT,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+        view_formats: &[EGUI_VIEW_FORMAT],
+    });
+    let view = texture.create_view(&Default::default());
+    // egui treats a texture's values as gamma-encoded: it samples the same bytes through a
+    // plain (non-sRGB) view, else the picture comes out decoded twice, too dark.
+    let egui_view = texture.create_view(&wgpu::TextureViewDescriptor {
+        format: Some(EGUI_VIEW_FORMAT),
+        ..Default::default()
+    });
+    let mut egui_renderer = rs.renderer.write();
+    let id = match reuse {
+        Some(id) => {
+            egui_renderer.update_egui_texture_from_wgpu_texture(
+                &rs.device,
+                &egui_view,
+                wgpu::FilterMode::Linear,
+                id,
+            );
+            id
+        }
+        None => {
+            egui_renderer.register_native_texture(&rs.device, &egui_view, wgpu::FilterMode::Linear)
+        }
+    };
+    SceneTexture { texture, view, id }
+}
+
 /// The texture the scene is rendered into, registered with egui once.
 pub(super) struct Output {
     render_state: egui_wgpu::RenderState,
@@ -216,46 +271,8 @@ impl Output {
             Some(o) => (o.size.0.max(size.0), o.size.1.max(size.1)),
             None => size,
         };
-        let texture = rs.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("scene on a slide"),
-            size: wgpu::Extent3d {
-                width: size.0,
-                height: size.1,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: OUTPUT_FORMAT,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
-            view_formats: &[EGUI_VIEW_FORMAT],
-        });
-        let view = texture.create_view(&Default::default());
-        // egui treats a texture's values as gamma-encoded: it samples the same bytes through a
-        // plain (non-sRGB) view, else the picture comes out decoded twice, too dark.
-        let egui_view = texture.create_view(&wgpu::TextureViewDescriptor {
-            format: Some(EGUI_VIEW_FORMAT),
-            ..Default::default()
-        });
-        let id = {
-            let mut egui_renderer = rs.renderer.write();
-            match current.as_ref() {
-                Some(o) => {
-                    egui_renderer.update_egui_texture_from_wgpu_texture(
-                        &rs.device,
-                        &egui_view,
-                        wgpu::FilterMode::Linear,
-                        o.id,
-                    );
-                    o.id
-                }
-                None => egui_renderer.register_native_texture(
-                    &rs.device,
-                    &egui_view,
-                    wgpu::FilterMode::Linear,
-                ),
-            }
-        };
+        let reuse = current.as_ref().map(|o| o.id);
+        let SceneTexture { texture, view, id } = scene_texture(rs, "scene on a slide", size, reuse);
         if let Some(mut old) = current.take() {
             // the id now names the new texture: do not free it with the old one
             old.owns_id = false;

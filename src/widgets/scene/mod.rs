@@ -11,7 +11,7 @@
 //! camera, time, a larger size) or, in the window, while playing; a slide that does not show the
 //! widget never makes one, so it costs nothing there.
 
-mod gpu;
+pub mod gpu;
 
 use std::path::{Path, PathBuf};
 
