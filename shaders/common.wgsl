@@ -104,7 +104,13 @@ fn gerstner(xz: vec2f, t: f32) -> Surface {
     return Surface(p, normalize(cross(bt, tg)), normalize(tg));
 }
 
-// Directional shadow: PCF over 3×3 comparison taps (each a bilinear 2×2 in hardware).
+// Comparison taps on each side of the centre one in `sun_visibility`: 1 (3×3 PCF) or 0 (one
+// bilinear tap, the lowest quality rungs). Set per pipeline (ShadowFilter in src/render/frame.rs):
+// a constant to the shader compiler, so the loops below have constant bounds.
+override SHADOW_PCF_RADIUS: i32 = 1;
+
+// Directional shadow: percentage-closer filtering (Reeves, Salesin & Cook 1987) over
+// (2r + 1)² comparison taps, each a bilinear 2×2 in hardware.
 fn sun_visibility(world_pos: vec3f, normal: vec3f) -> f32 {
     if (!on(g.shadows_on)) {
         return 1.0;
@@ -118,12 +124,14 @@ fn sun_visibility(world_pos: vec3f, normal: vec3f) -> f32 {
     }
     let texel = 1.0 / vec2f(textureDimensions(shadow_map));
     var sum = 0.0;
-    for (var y = -1; y <= 1; y++) {
-        for (var x = -1; x <= 1; x++) {
+    let r = SHADOW_PCF_RADIUS;
+    for (var y = -r; y <= r; y++) {
+        for (var x = -r; x <= r; x++) {
             sum += textureSampleCompareLevel(shadow_map, shadow_sampler, uv + vec2f(f32(x), f32(y)) * texel, ndc.z);
         }
     }
-    return sum / 9.0;
+    let taps = f32(2 * r + 1);
+    return sum / (taps * taps);
 }
 
 // Sunlight reaching a point under water is absorbed along its (unrefracted) path: Beer–Lambert.

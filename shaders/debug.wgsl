@@ -5,6 +5,7 @@
 // Shadow maps: Williams 1978; cube maps: Greene 1986; caustics: GPU Gems 1 ch. 2.
 //!include fullscreen.wgsl
 //!include aces.wgsl
+//!include srgb.wgsl
 
 // `PostParams` in src/render/tonemap.rs
 struct Post {
@@ -43,31 +44,34 @@ fn cross_dir(face: i32, f: vec2f) -> vec3f {
 @fragment
 fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
     let size_px = post.viewport_size_px;
+    // pixel position in the viewport (not the framebuffer: scene mode draws into a part of
+    // the window)
+    let px = in.uv * size_px;
     // the two maps: square, centred
     let side = min(size_px.x, size_px.y);
-    let p = (in.clip.xy - 0.5 * (size_px - vec2f(side))) / side;
+    let p = (px - 0.5 * (size_px - vec2f(side))) / side;
     let outside = any(p < vec2f(0.0)) || any(p > vec2f(1.0));
     if (post.debug_view == 4u) {
         if (outside) {
-            return vec4f(0.05, 0.05, 0.05, 1.0);
+            return to_target(vec3f(0.05));
         }
         // focusing factor: 1 (flat water) mid grey, the bright folds white
         let focus = textureSampleLevel(caustics_map, env_sampler, p, 0.0).r;
-        return vec4f(aces(vec3f(0.2 * focus)), 1.0);
+        return to_target(aces(vec3f(0.2 * focus)));
     }
     if (post.debug_view == 1u) {
         if (outside) {
-            return vec4f(0.05, 0.05, 0.05, 1.0);
+            return to_target(vec3f(0.05));
         }
         let size = vec2f(textureDimensions(shadow_map));
         let d = textureLoad(shadow_map, vec2i(p * size), 0);
         let grey = pow(clamp(d, 0.0, 1.0), 2.0);
-        return vec4f(vec3f(grey), 1.0);
+        return to_target(vec3f(grey));
     }
     // env cube cross: 4 × 3 cells, top half of the screen; mips in a strip below
     let cell_px = min(size_px.x / 4.0, size_px.y / 3.6);
     let origin = vec2f(0.5 * (size_px.x - 4.0 * cell_px), 0.0);
-    let c = (in.clip.xy - origin) / cell_px;
+    let c = (px - origin) / cell_px;
     var face = -1;
     let ci = vec2i(floor(c));
     if (ci.y == 1 && ci.x >= 0 && ci.x < 4) {
@@ -80,17 +84,17 @@ fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
     }
     if (face >= 0) {
         let d = normalize(cross_dir(face, fract(c)));
-        return vec4f(aces(textureSampleLevel(env_cube, env_sampler, d, 0.0).rgb), 1.0);
+        return to_target(aces(textureSampleLevel(env_cube, env_sampler, d, 0.0).rgb));
     }
     // the mip strip: the +x…−z equator seen at increasing roughness, one band per mip
     let mips = post.env_mip_count;
     let strip_top = 3.0 * cell_px;
-    if (in.clip.y > strip_top && ci.x >= 0 && c.x < 4.0) {
-        let t = (in.clip.y - strip_top) / (size_px.y - strip_top);
+    if (px.y > strip_top && ci.x >= 0 && c.x < 4.0) {
+        let t = (px.y - strip_top) / (size_px.y - strip_top);
         let mip = floor(t * mips);
         let yaw = c.x / 4.0 * 6.2831853;
         let d = vec3f(cos(yaw), 0.15, sin(yaw));
-        return vec4f(aces(textureSampleLevel(env_cube, env_sampler, d, mip).rgb), 1.0);
+        return to_target(aces(textureSampleLevel(env_cube, env_sampler, d, mip).rgb));
     }
-    return vec4f(0.05, 0.05, 0.05, 1.0);
+    return to_target(vec3f(0.05));
 }

@@ -7,6 +7,7 @@
 
 use std::path::{Path, PathBuf};
 
+use lectern::render::frame::ShadowFilter;
 use lectern::render::{DebugView, Headless, shaders};
 use lectern::scene;
 
@@ -319,6 +320,51 @@ fn toggling_caustics_changes_the_seabed_and_they_move_with_the_waves() {
     let (moved_on, moved_off) = (diff(&later, &on).1, diff(&later_off, &off).1);
     eprintln!("0.2 s later, mean diff: {moved_on:.2} with caustics, {moved_off:.2} without");
     assert!(moved_on > 1.2 * moved_off);
+}
+
+/// The cheaper shadow filter of the lowest quality rungs keeps every shadow: drawn at those
+/// rungs' render scale, against the 3×3 PCF frame it differs along shadow edges (here mostly
+/// the fish's thin shadows on the sand), far less than the shadows themselves make, and it
+/// does differ (the variant is built and chosen).
+#[test]
+fn the_bilinear_shadow_filter_keeps_the_shadows_and_changes_only_their_edges() {
+    let mut h = headless(Path::new("shaders"));
+    h.sim.set_time(2.5);
+    let first_hard = scene::quality::LADDER
+        .iter()
+        .find(|r| !r.soft_shadows)
+        .unwrap();
+    h.settings.render_scale = first_hard.render_scale;
+    let pcf = seabed(&h.render(GOLDEN_SIZE).unwrap());
+    h.settings.shadow_filter = ShadowFilter::Bilinear;
+    let bilinear = seabed(&h.render(GOLDEN_SIZE).unwrap());
+    h.settings.shadows = false;
+    let none = seabed(&h.render(GOLDEN_SIZE).unwrap());
+    let (edge_frac, edge_mean) = diff(&bilinear, &pcf);
+    let (shadow_frac, shadow_mean) = diff(&none, &pcf);
+    eprintln!(
+        "bilinear vs 3×3 PCF: {:.2} % of pixels, mean {edge_mean:.3}; no shadows vs PCF: \
+         {:.2} %, mean {shadow_mean:.3}",
+        edge_frac * 100.0,
+        shadow_frac * 100.0
+    );
+    let levels = [&pcf, &bilinear, &none].map(mean_level);
+    eprintln!(
+        "mean level: PCF {:.2}, bilinear {:.2}, no shadows {:.2}",
+        levels[0], levels[1], levels[2]
+    );
+    assert!(edge_mean > 0.0, "the filter made no difference at all");
+    assert!(
+        edge_mean < 0.5 * shadow_mean,
+        "{edge_mean} vs {shadow_mean}"
+    );
+    // as much shadow on the sand, with crisper edges: the mean light stays where PCF has it
+    let darkening = levels[2] - levels[0];
+    assert!(
+        (levels[1] - levels[0]).abs() < 0.1 * darkening,
+        "the shadows darken by {darkening:.2} with PCF, {:.2} with one tap",
+        levels[2] - levels[1]
+    );
 }
 
 /// The tolerance is tight enough that the golden catches a missing school or a moved sun.

@@ -139,6 +139,48 @@ fn small_scene() -> Scene {
     s
 }
 
+/// The lowest quality rungs step the school once every few fixed steps, by that much time: the
+/// fish swim as far and stay as reproducible, the school costs a third, and the floating bodies
+/// take every step as before.
+#[test]
+fn a_school_stepped_every_third_step_swims_alike_and_leaves_the_bodies_alone() {
+    let s = small_scene();
+    let run = |every: u32, t: f64| {
+        let mut sim = SceneSim::new(s.clone());
+        sim.set_school_every(every);
+        sim.set_time(t);
+        sim.snapshot()
+    };
+    let (every_step, every_third) = (run(1, 1.5), run(3, 1.5));
+    assert_eq!(every_third, run(3, 1.5), "reproducible");
+    assert_eq!(every_step.bodies, every_third.bodies, "bodies untouched");
+    assert_ne!(
+        every_step.fish, every_third.fish,
+        "the school did step differently"
+    );
+    let start = run(1, 0.0);
+    let centroid = |f: &[lectern::school::FishInstance]| {
+        f.iter().map(|f| f.position).sum::<Vec3>() / f.len() as f32
+    };
+    let travelled = |f: &[lectern::school::FishInstance]| {
+        f.iter()
+            .zip(&start.fish)
+            .map(|(a, b)| (a.position - b.position).length())
+            .sum::<f32>()
+            / f.len() as f32
+    };
+    let (d1, d3) = (travelled(&every_step.fish), travelled(&every_third.fish));
+    assert!(d1 > 0.5, "the fish swam: {d1} m");
+    assert!((d3 - d1).abs() < 0.1 * d1, "{d3} m vs {d1} m in 1.5 s");
+    let shift = (centroid(&every_third.fish) - centroid(&every_step.fish)).length();
+    assert!(shift < 0.2, "the school's centre moved {shift} m apart");
+    // 90 fixed steps: 30 school steps of three steps' time; halfway through a group of three
+    // the school has not moved yet
+    let (a, b) = (run(3, 90.0 / 60.0), run(3, 91.0 / 60.0));
+    assert_eq!(a.fish, b.fish);
+    assert_ne!(a.bodies, b.bodies);
+}
+
 #[test]
 fn the_state_at_time_t_does_not_depend_on_how_it_was_reached() {
     let s = small_scene();

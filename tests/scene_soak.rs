@@ -4,12 +4,15 @@
 //! views, bind groups, pipelines, shader modules, samplers, GPU memory) nor the process's
 //! resident memory may grow. This is the test that caught lavapipe keeping a shader variant
 //! per draw (docs/benchmarks/scene.md): ~1.3 MB per frame from a branch in pbr.wgsl's vertex
-//! shader, then ~0.25 MB per frame from a loop bound read from a uniform in common.wgsl.
+//! shader, then ~0.25 MB per frame from a loop bound read from a uniform in common.wgsl. The
+//! reload phase also walks the automatic quality's ladder as a slow window does (render scale,
+//! fish detail, the shadow filter's pipeline variants, the school's stepping).
 
 use std::path::Path;
 
 use lectern::render::{Headless, shaders};
 use lectern::scene;
+use lectern::scene::quality::LADDER;
 
 const SIZE: (u32, u32) = (320, 180);
 /// Frames drawn with nothing reloaded (a reload frees what a pipeline kept, so a per-frame
@@ -82,14 +85,23 @@ fn gpu_objects_and_memory_stay_flat_over_frames_and_reloads() {
         reloads += 1;
     };
 
-    // warm up: caches, first reloads, allocator pools
-    for i in 0..3 * RELOAD_EVERY {
+    // the quality controller moving between rungs
+    let rung = |h: &mut Headless, i: u32| {
+        let r = LADDER[(i / 10) as usize % LADDER.len()];
+        h.settings.apply_rung(&r);
+        h.sim.set_school_every(r.school_every);
+    };
+
+    // warm up: caches, first reloads, allocator pools, every rung once
+    for i in 0..(3 * RELOAD_EVERY).max(10 * LADDER.len() as u32) {
         h.sim.step(1.0 / 30.0);
         h.render(SIZE).unwrap();
         if i % RELOAD_EVERY == 0 {
             reload(&mut h);
         }
+        rung(&mut h, i);
     }
+    rung(&mut h, 0);
     h.render(STILL_SIZE).unwrap();
     h.render(SIZE).unwrap();
     let before = live_objects(&h.gpu.device);
@@ -115,7 +127,9 @@ fn gpu_objects_and_memory_stay_flat_over_frames_and_reloads() {
         if i % RELOAD_EVERY == 0 {
             reload(&mut h);
         }
+        rung(&mut h, i);
     }
+    rung(&mut h, 0);
     h.render(SIZE).unwrap();
     let after = live_objects(&h.gpu.device);
     let rss_after = rss_mb();

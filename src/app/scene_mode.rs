@@ -1,8 +1,10 @@
 //! Scene mode in the app: owns the water scene's simulation and steps it, takes the mouse
 //! (orbit, zoom, the flee point), reloads `scenes/*.ron` through [`LiveFile`] and `shaders/`
 //! through the renderer (one folder watcher for both, polled on the UI thread), holds the
-//! quality controller, and shows the renderer's image as an egui texture. The renderer only
-//! draws what it is given. Its teaching panel is in [`super::scene_panel`].
+//! quality controller, and draws the renderer's output straight into egui's pass over the
+//! window (a paint callback: on a software rasteriser a full-window texture drawn again by
+//! egui cost ~30 ms a frame). The renderer only draws what it is given. Its teaching panel is
+//! in [`super::scene_panel`].
 
 use std::collections::VecDeque;
 use std::path::{Path, PathBuf};
@@ -12,18 +14,22 @@ use anyhow::Result;
 
 use crate::reload::{DirWatcher, LiveFile, Reloaded};
 use crate::render::gpu::UncapturedErrors;
-use crate::render::{RenderSettings, Renderer};
+use crate::render::{OutputDraw, RenderSettings, Renderer};
 use crate::scene::{self, FrameSnapshot, QualityController, Scene, SceneSim};
 
-use crate::widgets::scene::gpu::{OUTPUT_FORMAT, SceneTexture, scene_texture};
+/// The scene's output drawn inside egui's render pass, over the rect it was added for.
+struct SceneOutput(OutputDraw);
 
-/// The texture the renderer draws into, registered with egui once (and updated in place when
-/// the size changes, so egui's texture list does not grow).
-struct Output {
-    size: (u32, u32),
-    _texture: wgpu::Texture,
-    view: wgpu::TextureView,
-    id: egui::TextureId,
+impl egui_wgpu::CallbackTrait for SceneOutput {
+    fn paint(
+        &self,
+        _info: egui::PaintCallbackInfo,
+        pass: &mut wgpu::RenderPass<'static>,
+        _resources: &egui_wgpu::CallbackResources,
+    ) {
+        // egui has set the viewport to the rect: the full-screen triangle fills just that
+        self.0.draw(pass);
+    }
 }
 
 pub struct SceneMode {
@@ -43,7 +49,6 @@ pub struct SceneMode {
     pub controls_open: bool,
     pub controls_button: bool,
     pub(super) selected_material: usize,
-    output: Option<Output>,
     snapshot: Option<FrameSnapshot>,
     last_instant: Option<Instant>,
     pub(super) cpu_ms: VecDeque<f32>,
@@ -76,7 +81,8 @@ impl SceneMode {
             &render_state.queue,
             &shader_dir,
             &scene,
-            OUTPUT_FORMAT,
+            // the output is drawn into egui's pass over the window
+            render_state.target_format,
         )?;
         let scenes_dir = scene_path.parent().unwrap_or(Path::new("."));
         let watcher = DirWatcher::new(&[&shader_dir, scenes_dir], Duration::from_millis(80), wake)
@@ -96,7 +102,6 @@ impl SceneMode {
             controls_open: false,
             controls_button: true,
             selected_material: 0,
-            output: None,
             snapshot: None,
             last_instant: None,
             cpu_ms: VecDeque::new(),
@@ -206,7 +211,9 @@ impl SceneMode {
             self.quality.observe(interval);
             self.drawn = Some(interval);
         }
-        (self.settings.render_scale, self.settings.fish_detail) = self.quality.settings();
+        let rung = self.quality.settings();
+        self.settings.apply_rung(&rung);
+        self.sim.set_school_every(rung.school_every);
 
         let (rect, response) =
             ui.allocate_exact_size(ui.available_size(), egui::Sense::click_and_drag());
@@ -216,15 +223,18 @@ impl SceneMode {
             (rect.width() * ppp).round().max(1.0) as u32,
             (rect.height() * ppp).round().max(1.0) as u32,
         );
-        self.ensure_output(render_state, size);
         let t0 = Instant::now();
         let snap = self.snapshot.get_or_insert_with(|| self.sim.snapshot());
         self.sim.snapshot_into(snap);
-        if let Some(out) = &self.output {
-            self.renderer
-                .render(&self.sim.scene, snap, &self.settings, &out.view, size);
-            let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
-            ui.painter().image(out.id, rect, uv, egui::Color32::WHITE);
+        let enc = self
+            .renderer
+            .encode_scene(&self.sim.scene, snap, &self.settings, size);
+        render_state.queue.submit([enc.finish()]);
+        if let Some(output) = self.renderer.output(&self.settings) {
+            ui.painter().add(egui_wgpu::Callback::new_paint_callback(
+                rect,
+                SceneOutput(output),
+            ));
         }
         push(&mut self.cpu_ms, t0.elapsed().as_secs_f32() * 1e3);
         self.overlay_ui(ui, rect);
@@ -306,20 +316,6 @@ impl SceneMode {
             .vscroll(true)
             .show(ui.ctx(), |ui| self.controls_ui(ui));
         self.controls_open &= open;
-    }
-
-    fn ensure_output(&mut self, rs: &egui_wgpu::RenderState, size: (u32, u32)) {
-        if self.output.as_ref().is_some_and(|o| o.size == size) {
-            return;
-        }
-        let reuse = self.output.as_ref().map(|o| o.id);
-        let SceneTexture { texture, view, id } = scene_texture(rs, "scene view", size, reuse);
-        self.output = Some(Output {
-            size,
-            _texture: texture,
-            view,
-            id,
-        });
     }
 }
 

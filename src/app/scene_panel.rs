@@ -189,7 +189,7 @@ impl SceneMode {
     /// The quality in use: automatic (budget, the rung and what it means) or fixed by the file.
     fn quality_ui(&mut self, ui: &mut egui::Ui) {
         let info = self.renderer.frame_info();
-        let (scale, detail) = self.quality.settings();
+        let rung = self.quality.settings();
         let what = match self.quality.mode() {
             Quality::Auto { budget_ms } => format!(
                 "quality: auto, budget {budget_ms:.0} ms (step {} of {})",
@@ -200,15 +200,25 @@ impl SceneMode {
         };
         ui.label(what);
         ui.monospace(format!(
-            "render {}×{} px ({:.0} %), fish detail {:.2}\nfish drawn full/medium/coarse: {}/{}/{} · \
-             frame {:.0} ms",
+            "render {}×{} px ({:.0} %), fish detail {:.2}\nfish drawn full/medium/coarse/far: {}/{}/{}/{}\n\
+             shadow edges {}, school stepped every {} · frame {:.0} ms",
             info.render_size.0,
             info.render_size.1,
-            scale * 100.0,
-            detail,
+            rung.render_scale * 100.0,
+            rung.fish_detail,
             info.fish_per_lod[0],
             info.fish_per_lod[1],
             info.fish_per_lod[2],
+            info.fish_per_lod[3],
+            if rung.soft_shadows {
+                "3×3 PCF"
+            } else {
+                "1 bilinear tap"
+            },
+            match rung.school_every {
+                1 => "step".to_owned(),
+                n => format!("{n} steps"),
+            },
             mean(&self.interval_ms),
         ));
     }

@@ -42,6 +42,11 @@ pub struct Args {
     /// [default: 1, or the scene file's fixed quality]
     #[arg(long)]
     pub fish_detail: Option<f32>,
+    /// Draw and simulate as step K of the automatic quality's ladder does (1 = full quality,
+    /// 8 = the coarsest; the presenter panel shows the step in use): render scale, fish detail,
+    /// shadow filter and school stepping
+    #[arg(long, value_name = "K", conflicts_with_all = ["render_scale", "fish_detail"])]
+    pub rung: Option<usize>,
     /// Leave the caustics out (to see or time what they add)
     #[arg(long)]
     pub no_caustics: bool,
@@ -109,13 +114,29 @@ pub fn run(args: Args) -> Result<()> {
         anyhow::ensure!((0.0..=4.0).contains(&d), "--fish-detail must be in 0..=4");
         h.settings.fish_detail = d;
     }
+    if let Some(k) = args.rung {
+        let ladder = &scene::quality::LADDER;
+        let rung = k
+            .checked_sub(1)
+            .and_then(|i| ladder.get(i))
+            .with_context(|| format!("--rung {k}: the ladder has steps 1 to {}", ladder.len()))?;
+        h.settings.apply_rung(rung);
+        h.sim.set_school_every(rung.school_every);
+    }
     let setup = t0.elapsed();
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("creating {}", args.out.display()))?;
     let t1 = Instant::now();
     let mut render_ms = Vec::with_capacity(args.frames as usize);
+    // per fixed simulation step, from the frames that stepped
+    let mut step_ms = Vec::with_capacity(args.frames as usize);
     for i in 0..args.frames {
+        let (steps_before, t) = (h.sim.steps(), Instant::now());
         h.sim.set_time(args.time + i as f64 / args.fps);
+        let stepped = h.sim.steps().saturating_sub(steps_before);
+        if i > 0 && stepped > 0 {
+            step_ms.push(t.elapsed().as_secs_f64() * 1e3 / stepped as f64);
+        }
         let t = Instant::now();
         let img = h.render(args.size)?;
         render_ms.push(t.elapsed().as_secs_f64() * 1e3);
@@ -136,20 +157,29 @@ pub fn run(args: Args) -> Result<()> {
         args.out.display()
     );
     render_ms.sort_by(f64::total_cmp);
+    step_ms.sort_by(f64::total_cmp);
+    if let Some(ms) = step_ms.get(step_ms.len() / 2) {
+        eprintln!(
+            "simulation: median {ms:.2} ms per fixed step of {:.4} s ({} fish)",
+            h.sim.dt_secs(),
+            h.sim.fish_count()
+        );
+    }
     let fi = h.renderer.frame_info();
     if render_ms.is_empty() {
         return Ok(());
     }
     eprintln!(
         "render (GPU work and read-back, no simulation or PNG): median {:.1} ms, min {:.1} ms; \
-         drawn at {}x{}, fish full/medium/coarse {}/{}/{}",
+         drawn at {}x{}, fish full/medium/coarse/far {}/{}/{}/{}",
         render_ms[render_ms.len() / 2],
         render_ms[0],
         fi.render_size.0,
         fi.render_size.1,
         fi.fish_per_lod[0],
         fi.fish_per_lod[1],
-        fi.fish_per_lod[2]
+        fi.fish_per_lod[2],
+        fi.fish_per_lod[3]
     );
     Ok(())
 }

@@ -32,7 +32,7 @@ impl Technique for DebugPipeline {
 
     fn build(ctx: &Ctx, m: &wgpu::ShaderModule) -> Self {
         Self {
-            pipeline: ctx.pipeline(
+            pipeline: ctx.output_pipeline(
                 m,
                 PipelineDesc {
                     label: "debug",

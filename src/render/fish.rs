@@ -1,8 +1,10 @@
 //! The school as instanced draws (fish.wgsl): one instance buffer of per-fish data (position,
-//! scale, orientation, tail phase) with step mode Instance, and the fish mesh at three levels
-//! of detail. Each frame the fish are sorted into ranges of that buffer: those seen large get
-//! the full mesh, smaller ones coarser meshes, fish outside the view are left out of the main
-//! pass; the shadow pass draws every fish with the coarsest mesh (level of detail: Clark 1976,
+//! scale, orientation, tail phase) with step mode Instance, and the fish mesh at four levels
+//! of detail (`fish_mesh`). Each frame the fish are sorted into ranges of that buffer: those
+//! seen large get the full mesh, smaller ones coarser meshes, fish outside the view are left
+//! out of the main pass; the shadow pass draws every fish with the coarsest mesh. Back faces
+//! are culled in both passes: on a software rasteriser the fish cost per triangle set up, not
+//! per pixel (level of detail: Clark 1976,
 //! "Hierarchical Geometric Models for Visible Surface Algorithms"; frustum planes from the
 //! projection matrix: Gribb & Hartmann 2001).
 
@@ -12,8 +14,9 @@ use glam::{Mat4, Quat, Vec4};
 
 use crate::school::FishInstance;
 
-use super::mesh::{self, GpuMesh, Vertex};
-use super::pipeline::{Ctx, OPAQUE_DEPTH, PipelineDesc, Technique};
+use super::fish_mesh;
+use super::mesh::{GpuMesh, MeshData, Vertex};
+use super::pipeline::{Ctx, OPAQUE_DEPTH, PerShadowFilter, PipelineDesc, Technique};
 use super::shadow::SHADOW_BIAS;
 
 /// Per-instance fish data: position + scale, orientation quaternion (x, y, z, w), tail phase.
@@ -49,7 +52,7 @@ impl FishInstanceGpu {
 
 /// The fish pipelines: lit (main pass) and depth only (shadow pass).
 pub struct FishPipelines {
-    pub main: wgpu::RenderPipeline,
+    pub main: PerShadowFilter<wgpu::RenderPipeline>,
     pub shadow: wgpu::RenderPipeline,
 }
 
@@ -60,7 +63,7 @@ impl Technique for FishPipelines {
         let l = ctx.layouts;
         let buffers = [Some(Vertex::layout()), Some(FishInstanceGpu::layout())];
         Self {
-            main: ctx.pipeline(
+            main: ctx.lit_pipelines(
                 m,
                 PipelineDesc {
                     label: "fish",
@@ -70,7 +73,7 @@ impl Technique for FishPipelines {
                     buffers: &buffers,
                     color: Some(super::pipeline::HDR_FORMAT),
                     depth: OPAQUE_DEPTH,
-                    cull: None, // the tail fin is seen from both sides
+                    cull: Some(wgpu::Face::Back), // the fin is two one-sided copies
                 },
             ),
             shadow: ctx.pipeline(
@@ -83,31 +86,43 @@ impl Technique for FishPipelines {
                     buffers: &buffers,
                     color: None,
                     depth: Some((true, wgpu::CompareFunction::Less, SHADOW_BIAS)),
-                    cull: None,
+                    cull: Some(wgpu::Face::Back),
                 },
             ),
         }
     }
 }
 
-/// Rings × segments of each level, finest first.
-pub const LOD_SHAPES: [(u32, u32); 3] = [(20, 16), (7, 6), (3, 3)];
+/// Levels of detail, finest first; the last is the shadow pass's.
+pub const LEVELS: usize = 4;
+pub const FAR_LEVEL: usize = LEVELS - 1;
+
+/// The mesh of each level, finest first: 644, 88, 22 and 10 triangles.
+pub fn level_meshes() -> [MeshData; LEVELS] {
+    [
+        fish_mesh::fish(),
+        fish_mesh::fish_lod(7, 6),
+        fish_mesh::fish_lod(3, 3),
+        fish_mesh::fish_far(),
+    ]
+}
 
 /// Fish drawn at least this many pixels long get the full mesh, at least `MEDIUM_PX` the middle
-/// one (at `fish_detail` 1; lower detail divides these lengths up).
+/// one, at least `COARSE_PX` the coarse one, shorter ones the far one (at `fish_detail` 1;
+/// lower detail divides these lengths up).
 pub const FULL_PX: f32 = 40.0;
 pub const MEDIUM_PX: f32 = 12.0;
+pub const COARSE_PX: f32 = 4.0;
 
 /// The fish meshes, finest first.
 pub struct FishMeshes {
-    pub lods: [GpuMesh; 3],
+    pub lods: [GpuMesh; LEVELS],
 }
 
 impl FishMeshes {
     pub fn new(device: &wgpu::Device) -> Self {
-        let make = |(r, s): (u32, u32)| GpuMesh::upload(device, "fish", &mesh::fish_lod(r, s));
         Self {
-            lods: LOD_SHAPES.map(make),
+            lods: level_meshes().map(|m| GpuMesh::upload(device, "fish", &m)),
         }
     }
 }
@@ -116,7 +131,7 @@ impl FishMeshes {
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
 pub struct LodRanges {
     /// per level, finest first: the visible fish drawn with that mesh
-    pub visible: [Range<u32>; 3],
+    pub visible: [Range<u32>; LEVELS],
     /// every fish (visible or not), for the shadow pass
     pub all: Range<u32>,
 }
@@ -133,7 +148,7 @@ pub struct LodView {
     /// pixels per metre at one metre from the camera: target height / (2 tan(fov / 2))
     pub px_per_m_at_1m: f32,
     pub eye: glam::Vec3,
-    /// 1 = full detail; smaller values give coarser meshes sooner; 0 = coarsest everywhere
+    /// 1 = full detail; smaller values give coarser meshes sooner; 0 = the far mesh everywhere
     pub detail: f32,
 }
 
@@ -159,16 +174,18 @@ pub fn level_for(length_px: f32, detail: f32) -> usize {
         0
     } else if d > 0.0 && length_px * d >= MEDIUM_PX {
         1
-    } else {
+    } else if d > 0.0 && length_px * d >= COARSE_PX {
         2
+    } else {
+        FAR_LEVEL
     }
 }
 
 /// Sorts the fish into ranges by level each frame; its buffers are kept from frame to frame.
 #[derive(Default)]
 pub struct LodSorter {
-    levels: [Vec<FishInstanceGpu>; 4],
-    /// the instances in draw order: [full | medium | coarse | out of view]
+    levels: [Vec<FishInstanceGpu>; LEVELS + 1],
+    /// the instances in draw order: [full | medium | coarse | far | out of view]
     pub sorted: Vec<FishInstanceGpu>,
 }
 
@@ -189,23 +206,19 @@ impl LodSorter {
                 let length_px = 1.1 * f.scale * view.px_per_m_at_1m / dist;
                 level_for(length_px, view.detail)
             } else {
-                3
+                LEVELS
             };
             self.levels[level].push(FishInstanceGpu::from(f));
         }
         self.sorted.clear();
-        let mut starts = [0u32; 5];
+        let mut starts = [0u32; LEVELS + 2];
         for (i, l) in self.levels.iter().enumerate() {
             self.sorted.extend_from_slice(l);
             starts[i + 1] = self.sorted.len() as u32;
         }
         LodRanges {
-            visible: [
-                starts[0]..starts[1],
-                starts[1]..starts[2],
-                starts[2]..starts[3],
-            ],
-            all: 0..starts[4],
+            visible: std::array::from_fn(|i| starts[i]..starts[i + 1]),
+            all: 0..starts[LEVELS + 1],
         }
     }
 }
@@ -225,7 +238,7 @@ mod tests {
     }
 
     #[test]
-    fn near_fish_get_the_full_mesh_far_ones_the_coarsest_and_unseen_ones_only_shadows() {
+    fn near_fish_get_the_full_mesh_far_ones_coarser_ones_and_unseen_ones_only_shadows() {
         let eye = Vec3::new(0.0, 0.0, 5.0);
         let view_from_world = glam::camera::rh::view::look_at_mat4(eye, Vec3::ZERO, Vec3::Y);
         let clip_from_view =
@@ -236,7 +249,7 @@ mod tests {
             eye,
             detail: 1.0,
         };
-        // 1 m away (≈ 218 px long), 20 m away (≈ 11 px), 100 m away, and behind the camera
+        // 1 m away (≈ 218 px long), 20 m away (≈ 11 px), 100 m away (≈ 2 px), and behind the camera
         let fish = [
             fish_at(0.0, 4.0),
             fish_at(0.0, -15.0),
@@ -246,7 +259,7 @@ mod tests {
         let mut sorter = LodSorter::default();
         let r = sorter.sort(&fish, &view);
         let out = &sorter.sorted;
-        assert_eq!(r.visible, [0..1, 1..1, 1..3]);
+        assert_eq!(r.visible, [0..1, 1..1, 1..2, 2..3]);
         assert_eq!(r.all, 0..4);
         assert_eq!(out[0].position_scale[2], 4.0);
         assert_eq!(
@@ -265,11 +278,9 @@ mod tests {
 
     #[test]
     fn levels_are_coarser_and_the_finest_is_the_full_fish() {
-        let tris: Vec<usize> = LOD_SHAPES
-            .iter()
-            .map(|&(r, s)| mesh::fish_lod(r, s).indices.len() / 3)
-            .collect();
-        assert_eq!(tris[0], mesh::fish().indices.len() / 3);
-        assert!(tris[0] > 10 * tris[2] && tris[1] > tris[2], "{tris:?}");
+        let tris = level_meshes().map(|m| m.indices.len() / 3);
+        assert_eq!(tris[0], fish_mesh::fish().indices.len() / 3);
+        assert!(tris.windows(2).all(|w| w[0] > w[1]), "{tris:?}");
+        assert!(tris[0] > 50 * tris[FAR_LEVEL], "{tris:?}");
     }
 }

@@ -6,6 +6,7 @@ use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 
 use crate::scene::model::MAX_WAVES;
+use crate::scene::quality::Rung;
 use crate::scene::snapshot::{FAR_M, NEAR_M};
 use crate::scene::{FrameSnapshot, Scene};
 
@@ -52,6 +53,29 @@ impl DebugView {
     }
 }
 
+/// How the lit shaders filter the sun's shadow map: 3×3 bilinear comparison taps (soft edges
+/// a few shadow texels wide), or one (a quarter of the cost per lit pixel on a software
+/// rasteriser, and as soft once a pixel covers more than a shadow texel: the lowest quality
+/// rungs). `SHADOW_PCF_RADIUS` in common.wgsl, a pipeline constant.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum ShadowFilter {
+    #[default]
+    Pcf3x3,
+    Bilinear,
+}
+
+impl ShadowFilter {
+    pub const ALL: [ShadowFilter; 2] = [Self::Pcf3x3, Self::Bilinear];
+
+    /// Taps on each side of the centre one.
+    pub fn pcf_radius_texels(self) -> f64 {
+        match self {
+            Self::Pcf3x3 => 1.0,
+            Self::Bilinear => 0.0,
+        }
+    }
+}
+
 /// What the lecturer can switch on and off to show each technique's contribution.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RenderSettings {
@@ -69,8 +93,23 @@ pub struct RenderSettings {
     /// scaled up by the tone mapping pass (dynamic resolution); 1 = full size.
     pub render_scale: f32,
     /// Fish level of detail: 1 = the full mesh up to the default distances, smaller values
-    /// switch to the coarser meshes nearer the camera (see [`super::fish::Lod`]).
+    /// switch to the coarser meshes nearer the camera (see [`super::fish::LodView`]).
     pub fish_detail: f32,
+    pub shadow_filter: ShadowFilter,
+}
+
+impl RenderSettings {
+    /// Draws with a rung of the quality ladder (the simulation's part of it, the school's
+    /// stepping, is the caller's to set on the simulation).
+    pub fn apply_rung(&mut self, rung: &Rung) {
+        self.render_scale = rung.render_scale;
+        self.fish_detail = rung.fish_detail;
+        self.shadow_filter = if rung.soft_shadows {
+            ShadowFilter::Pcf3x3
+        } else {
+            ShadowFilter::Bilinear
+        };
+    }
 }
 
 impl Default for RenderSettings {
@@ -86,6 +125,7 @@ impl Default for RenderSettings {
             exposure: 1.0,
             render_scale: 1.0,
             fish_detail: 1.0,
+            shadow_filter: ShadowFilter::Pcf3x3,
         }
     }
 }

@@ -1,6 +1,6 @@
 //! Meshes as vertex + index buffers with an explicit vertex layout (the "VAO" of the lecture):
 //! position, normal, tangent (xyz + handedness w), uv. Generated in code: terrain, rocks,
-//! boxes, spheres, capsules and the fish body.
+//! boxes, spheres and capsules (the fish body is in `fish_mesh`).
 
 use bytemuck::{Pod, Zeroable};
 use glam::{Vec2, Vec3};
@@ -148,7 +148,7 @@ impl GpuMesh {
 
 /// Indices of a (cols+1)×(rows+1) vertex grid, counter-clockwise seen from +normal when u runs
 /// along +x and v along −z (or, for surfaces, with the generator's orientation).
-fn grid_indices(cols: u32, rows: u32, flip: bool) -> Vec<u32> {
+pub(super) fn grid_indices(cols: u32, rows: u32, flip: bool) -> Vec<u32> {
     let mut idx = Vec::with_capacity((cols * rows * 6) as usize);
     for r in 0..rows {
         for c in 0..cols {
@@ -298,59 +298,6 @@ pub fn rock(radius: f32, seed: u32) -> MeshData {
     m
 }
 
-/// The fish body at full detail (20 rings of 16 segments, 644 triangles).
-pub fn fish() -> MeshData {
-    fish_lod(20, 16)
-}
-
-/// The fish body: an elliptic cross-section lofted along x (nose +0.5, tail −0.5), laterally
-/// compressed, plus a forked tail fin. Unit length; the instance scale sizes it. `rings` along
-/// the body and `segments` around it set the level of detail (2 · rings · segments + 4
-/// triangles).
-pub fn fish_lod(rings: u32, segments: u32) -> MeshData {
-    let rings = rings.max(2);
-    let segments = segments.max(3);
-    let mut m = MeshData::default();
-    for r in 0..=rings {
-        let s = r as f32 / rings as f32; // 0 nose … 1 tail root
-        let x = 0.5 - 0.85 * s;
-        // thickness profile: blunt nose, thickest at a third, thin caudal peduncle
-        let t = (s.max(1e-3)).powf(0.45) * (1.0 - s).powf(0.9) * 1.25;
-        let (ry, rz) = (0.16 * t + 0.006, 0.065 * t + 0.004);
-        for k in 0..=segments {
-            let phi = std::f32::consts::TAU * k as f32 / segments as f32;
-            let (sp, cp) = phi.sin_cos();
-            m.positions.push(Vec3::new(x, ry * cp, rz * sp));
-            m.uvs.push(Vec2::new(s * 3.0, cp * 0.5 + 0.5));
-        }
-    }
-    m.indices = grid_indices(segments, rings, false);
-    // tail fin: two mirrored fans (one per side), from the peduncle to a forked edge
-    let root = Vec3::new(-0.35, 0.0, 0.0);
-    let fin = [
-        Vec3::new(-0.55, 0.14, 0.0),
-        Vec3::new(-0.47, 0.0, 0.0),
-        Vec3::new(-0.55, -0.14, 0.0),
-    ];
-    for side in [1.0f32, -1.0] {
-        let base = m.positions.len() as u32;
-        for p in std::iter::once(root).chain(fin) {
-            m.positions.push(p + Vec3::Z * 0.002 * side);
-            m.uvs
-                .push(Vec2::new(3.0 + (root.x - p.x) * 4.0, p.y * 2.0 + 0.5));
-        }
-        if side > 0.0 {
-            m.indices
-                .extend_from_slice(&[base, base + 1, base + 2, base, base + 2, base + 3]);
-        } else {
-            m.indices
-                .extend_from_slice(&[base, base + 2, base + 1, base, base + 3, base + 2]);
-        }
-    }
-    m.compute_normals();
-    m
-}
-
 /// The water grid: only rest (x, z) positions; the vertex shader displaces them.
 pub fn water_grid(size: f32, resolution: u32) -> (Vec<[f32; 2]>, Vec<u32>) {
     let n = resolution.max(2);
@@ -372,37 +319,32 @@ pub fn water_grid(size: f32, resolution: u32) -> (Vec<[f32; 2]>, Vec<u32>) {
 }
 
 #[cfg(test)]
+/// Fraction of non-degenerate triangles whose winding faces away from `centre` (the
+/// triangles collapsed onto a pole have no orientation and are not counted).
+pub(super) fn outward(m: &MeshData, centre: Vec3) -> f32 {
+    let (mut ok, mut total) = (0, 0);
+    for t in m.indices.chunks_exact(3) {
+        let [a, b, c] = [t[0], t[1], t[2]].map(|i| m.positions[i as usize]);
+        let n = (b - a).cross(c - a);
+        if n.length_squared() < 1e-12 {
+            continue;
+        }
+        total += 1;
+        if n.dot((a + b + c) / 3.0 - centre) > 0.0 {
+            ok += 1;
+        }
+    }
+    ok as f32 / total as f32
+}
+
+#[cfg(test)]
 mod tests {
     use super::*;
-
-    /// Fraction of non-degenerate triangles whose winding faces away from `centre` (the
-    /// triangles collapsed onto a pole have no orientation and are not counted).
-    fn outward(m: &MeshData, centre: Vec3) -> f32 {
-        let (mut ok, mut total) = (0, 0);
-        for t in m.indices.chunks_exact(3) {
-            let [a, b, c] = [t[0], t[1], t[2]].map(|i| m.positions[i as usize]);
-            let n = (b - a).cross(c - a);
-            if n.length_squared() < 1e-12 {
-                continue;
-            }
-            total += 1;
-            if n.dot((a + b + c) / 3.0 - centre) > 0.0 {
-                ok += 1;
-            }
-        }
-        ok as f32 / total as f32
-    }
 
     #[test]
     fn closed_meshes_wind_counter_clockwise_outwards() {
         assert_eq!(outward(&cuboid(Vec3::new(1.0, 2.0, 3.0)), Vec3::ZERO), 1.0);
         assert!(outward(&capsule(1.0, 0.5, 12, 16), Vec3::ZERO) > 0.99);
-        let f = fish();
-        let body = MeshData {
-            indices: f.indices[..20 * 16 * 6].to_vec(),
-            ..f.clone()
-        };
-        assert!(outward(&body, Vec3::new(0.0, 0.0, 0.0)) > 0.9);
     }
 
     #[test]

@@ -9,6 +9,7 @@ pub mod caustics;
 pub mod check;
 pub mod debug;
 pub mod fish;
+pub mod fish_mesh;
 pub mod frame;
 pub mod gpu;
 pub mod headless;
@@ -29,7 +30,7 @@ pub mod water;
 pub use check::{check_shader_file, pipeline_check_skipped};
 pub use frame::{DebugView, RenderSettings};
 pub use headless::Headless;
-pub use renderer::{FrameInfo, Renderer};
+pub use renderer::{FrameInfo, OutputDraw, Renderer};
 
 /// Shaders relative to the project folder.
 pub const SHADER_DIR: &str = "shaders";

@@ -9,8 +9,8 @@ use crate::scene::Material;
 
 use super::mesh::Vertex;
 use super::pipeline::{
-    Ctx, FLOAT, HDR_FORMAT, Layout, OPAQUE_DEPTH, PipelineDesc, Technique, sampler, texture,
-    uniform,
+    Ctx, FLOAT, HDR_FORMAT, Layout, OPAQUE_DEPTH, PerShadowFilter, PipelineDesc, Technique,
+    sampler, texture, uniform,
 };
 
 /// `MaterialParams` in brdf.wgsl.
@@ -72,7 +72,7 @@ pub fn object_layout(device: &wgpu::Device) -> Layout {
 }
 
 pub struct PbrPipeline {
-    pub pipeline: wgpu::RenderPipeline,
+    pub pipeline: PerShadowFilter<wgpu::RenderPipeline>,
 }
 
 impl Technique for PbrPipeline {
@@ -81,7 +81,7 @@ impl Technique for PbrPipeline {
     fn build(ctx: &Ctx, m: &wgpu::ShaderModule) -> Self {
         let l = ctx.layouts;
         Self {
-            pipeline: ctx.pipeline(
+            pipeline: ctx.lit_pipelines(
                 m,
                 PipelineDesc {
                     label: "pbr",

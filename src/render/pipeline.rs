@@ -10,6 +10,7 @@ use std::path::{Path, PathBuf};
 
 use crate::diag::Diagnostic;
 
+use super::frame::ShadowFilter;
 use super::shaders::{self, Checked};
 use super::{caustics, debug, fish, frame, interface, pbr, shadow, sky, tonemap, water};
 
@@ -140,6 +141,7 @@ pub const NO_BIAS: wgpu::DepthBiasState = wgpu::DepthBiasState {
 pub const OPAQUE_DEPTH: Option<Depth> = Some((true, wgpu::CompareFunction::Less, NO_BIAS));
 
 /// One render pipeline as a technique describes it.
+#[derive(Clone)]
 pub struct PipelineDesc<'a> {
     pub label: &'static str,
     /// bind groups 0, 1, … in order
@@ -155,9 +157,68 @@ pub struct PipelineDesc<'a> {
 impl Ctx<'_> {
     /// Checks `d` against the shader, then creates it (inside the caller's error scope).
     pub fn pipeline(&self, module: &wgpu::ShaderModule, d: PipelineDesc) -> wgpu::RenderPipeline {
-        self.problems
-            .borrow_mut()
-            .extend(interface::check(self.shader, &d));
+        self.pipeline_with(module, d, &[], true)
+    }
+
+    /// A pipeline that draws into the output target (`d.color` is the output format): its
+    /// shader includes srgb.wgsl, whose `TARGET_IS_SRGB` is set from that format.
+    pub fn output_pipeline(
+        &self,
+        module: &wgpu::ShaderModule,
+        d: PipelineDesc,
+    ) -> wgpu::RenderPipeline {
+        let srgb = if self.output_format.is_srgb() {
+            1.0
+        } else {
+            0.0
+        };
+        self.pipeline_with(module, d, &[("TARGET_IS_SRGB", srgb)], true)
+    }
+
+    /// A lit pipeline once per [`ShadowFilter`] (`SHADOW_PCF_RADIUS` in common.wgsl), so the
+    /// quality setting can switch between them from one frame to the next.
+    pub fn lit_pipelines(
+        &self,
+        module: &wgpu::ShaderModule,
+        d: PipelineDesc,
+    ) -> PerShadowFilter<wgpu::RenderPipeline> {
+        PerShadowFilter(ShadowFilter::ALL.map(|f| {
+            let radius = [("SHADOW_PCF_RADIUS", f.pcf_radius_texels())];
+            // one interface check: the variants differ only in a constant
+            self.pipeline_with(module, d.clone(), &radius, f == ShadowFilter::ALL[0])
+        }))
+    }
+
+    /// Creates `d` with those of `constants` the shader declares (a shader edited to drop
+    /// one still builds, with the declaration's default if it keeps it).
+    fn pipeline_with(
+        &self,
+        module: &wgpu::ShaderModule,
+        d: PipelineDesc,
+        constants: &[(&str, f64)],
+        check_interface: bool,
+    ) -> wgpu::RenderPipeline {
+        let declared = |name: &str| {
+            self.shader
+                .module
+                .overrides
+                .iter()
+                .any(|(_, o)| o.name.as_deref() == Some(name))
+        };
+        let constants: Vec<(&str, f64)> = constants
+            .iter()
+            .copied()
+            .filter(|(name, _)| declared(name))
+            .collect();
+        let options = wgpu::PipelineCompilationOptions {
+            constants: &constants,
+            ..Default::default()
+        };
+        if check_interface {
+            self.problems
+                .borrow_mut()
+                .extend(interface::check(self.shader, &d));
+        }
         let groups: Vec<Option<&wgpu::BindGroupLayout>> =
             d.groups.iter().map(|g| Some(&g.layout)).collect();
         let layout = self
@@ -179,13 +240,13 @@ impl Ctx<'_> {
                 vertex: wgpu::VertexState {
                     module,
                     entry_point: Some(d.vs),
-                    compilation_options: Default::default(),
+                    compilation_options: options.clone(),
                     buffers: d.buffers,
                 },
                 fragment: d.fs.map(|fs| wgpu::FragmentState {
                     module,
                     entry_point: Some(fs),
-                    compilation_options: Default::default(),
+                    compilation_options: options.clone(),
                     targets: &targets,
                 }),
                 primitive: wgpu::PrimitiveState {
@@ -205,6 +266,18 @@ impl Ctx<'_> {
                 multiview_mask: None,
                 cache: None,
             })
+    }
+}
+
+/// A lit pipeline for each [`ShadowFilter`].
+pub struct PerShadowFilter<T>([T; 2]);
+
+impl<T> PerShadowFilter<T> {
+    pub fn get(&self, filter: ShadowFilter) -> &T {
+        match filter {
+            ShadowFilter::Pcf3x3 => &self.0[0],
+            ShadowFilter::Bilinear => &self.0[1],
+        }
     }
 }
 

@@ -42,7 +42,7 @@ impl Technique for TonemapPipeline {
 
     fn build(ctx: &Ctx, m: &wgpu::ShaderModule) -> Self {
         Self {
-            pipeline: ctx.pipeline(
+            pipeline: ctx.output_pipeline(
                 m,
                 PipelineDesc {
                     label: "tonemap",

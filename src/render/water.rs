@@ -4,7 +4,8 @@
 //! a copy of the opaque colour and the opaque depth (its inputs bind group, defined here).
 
 use super::pipeline::{
-    Ctx, FLOAT, HDR_FORMAT, Layout, NO_BIAS, PipelineDesc, Technique, sampler, texture,
+    Ctx, FLOAT, HDR_FORMAT, Layout, NO_BIAS, PerShadowFilter, PipelineDesc, Technique, sampler,
+    texture,
 };
 
 /// Group 1 of the water: the opaque colour (a copy), the opaque depth, a sampler.
@@ -32,7 +33,7 @@ pub fn vertex_layout() -> wgpu::VertexBufferLayout<'static> {
 }
 
 pub struct WaterPipeline {
-    pub pipeline: wgpu::RenderPipeline,
+    pub pipeline: PerShadowFilter<wgpu::RenderPipeline>,
 }
 
 impl Technique for WaterPipeline {
@@ -41,7 +42,7 @@ impl Technique for WaterPipeline {
     fn build(ctx: &Ctx, m: &wgpu::ShaderModule) -> Self {
         let l = ctx.layouts;
         Self {
-            pipeline: ctx.pipeline(
+            pipeline: ctx.lit_pipelines(
                 m,
                 PipelineDesc {
                     label: "water",

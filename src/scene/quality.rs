@@ -1,19 +1,45 @@
 //! The automatic quality setting: a frame-time budget held by stepping down (or back up) a
-//! ladder of render scale and fish detail. Pure logic — fed measured frame times, it says what
-//! to draw with — so the window, the tests and anything else can drive it.
+//! ladder of render scale, fish detail, shadow filtering and how often the school is stepped.
+//! Pure logic — fed measured frame times, it says what to draw and simulate with — so the
+//! window, the tests and anything else can drive it.
 
 use super::model::Quality;
 
-/// Render scale and fish detail, from full quality down; each rung costs less to draw.
-pub const LADDER: [(f32, f32); 8] = [
-    (1.0, 1.0),
-    (1.0, 0.6),
-    (0.85, 0.45),
-    (0.75, 0.3),
-    (0.65, 0.2),
-    (0.55, 0.12),
-    (0.45, 0.06),
-    (0.35, 0.0),
+/// What the scene is drawn and simulated with on one rung of the ladder.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Rung {
+    /// the fraction of the window's size, in each direction, the scene is drawn at
+    pub render_scale: f32,
+    /// fish level of detail: 1 = default distances, 0 = the far mesh everywhere
+    pub fish_detail: f32,
+    /// 3×3 PCF shadow edges; false = one bilinear tap (as soft once a pixel is larger than a
+    /// shadow texel, as it is on the rungs that use it)
+    pub soft_shadows: bool,
+    /// the school takes one step of this many fixed steps' time every this many fixed steps
+    /// (a window this slow shows at most one of them anyway); the floating bodies still
+    /// take every step
+    pub school_every: u32,
+}
+
+const fn rung(render_scale: f32, fish_detail: f32, soft_shadows: bool, school_every: u32) -> Rung {
+    Rung {
+        render_scale,
+        fish_detail,
+        soft_shadows,
+        school_every,
+    }
+}
+
+/// From full quality down; each rung costs less to draw.
+pub const LADDER: [Rung; 8] = [
+    rung(1.0, 1.0, true, 1),
+    rung(1.0, 0.6, true, 1),
+    rung(0.85, 0.45, true, 1),
+    rung(0.75, 0.3, true, 1),
+    rung(0.65, 0.2, true, 1),
+    rung(0.55, 0.12, false, 2),
+    rung(0.45, 0.06, false, 2),
+    rung(0.35, 0.0, false, 3),
 ];
 
 /// Frames to wait after a change before judging the new rung.
@@ -56,14 +82,14 @@ impl QualityController {
         self.mode
     }
 
-    /// (render scale, fish detail) to draw the next frame with.
-    pub fn settings(&self) -> (f32, f32) {
+    /// What to draw and simulate the next frame with.
+    pub fn settings(&self) -> Rung {
         match self.mode {
             Quality::Auto { .. } => LADDER[self.rung],
             Quality::Fixed {
                 render_scale,
                 fish_detail,
-            } => (render_scale, fish_detail),
+            } => rung(render_scale, fish_detail, true, 1),
         }
     }
 
@@ -113,8 +139,12 @@ mod tests {
 
     /// A renderer whose frame time is proportional to the pixels and fish detail drawn.
     fn frame_ms(c: &QualityController, full_ms: f32) -> f32 {
-        let (scale, detail) = c.settings();
-        full_ms * (0.2 + 0.5 * scale * scale + 0.3 * detail)
+        cost(&c.settings(), full_ms)
+    }
+
+    fn cost(r: &Rung, full_ms: f32) -> f32 {
+        let scale = r.render_scale;
+        full_ms * (0.2 + 0.5 * scale * scale + 0.3 * r.fish_detail)
     }
 
     #[test]
@@ -131,8 +161,7 @@ mod tests {
             slow.settings()
         );
         // … and it does not drop further than it needs to
-        let one_up = LADDER[slow.rung() - 1];
-        let above = 200.0 * (0.2 + 0.5 * one_up.0 * one_up.0 + 0.3 * one_up.1);
+        let above = cost(&LADDER[slow.rung() - 1], 200.0);
         assert!(
             above > 66.0 * ROOM,
             "the rung above would fit with room: {above}"
@@ -143,7 +172,7 @@ mod tests {
             let ms = frame_ms(&fast, 10.0);
             fast.observe(ms);
         }
-        assert_eq!(fast.settings(), (1.0, 1.0));
+        assert_eq!(fast.settings(), LADDER[0]);
         // the machine gets faster again (the lecturer closed another program): quality returns
         for _ in 0..1000 {
             let ms = frame_ms(&slow, 20.0);
@@ -159,6 +188,21 @@ mod tests {
             fish_detail: 0.25,
         });
         c.observe(1000.0);
-        assert_eq!(c.settings(), (0.5, 0.25));
+        assert_eq!(c.settings(), rung(0.5, 0.25, true, 1));
+    }
+
+    #[test]
+    fn each_rung_costs_no_more_than_the_one_above() {
+        for w in LADDER.windows(2) {
+            let (a, b) = (&w[0], &w[1]);
+            assert!(b.render_scale <= a.render_scale && b.fish_detail <= a.fish_detail);
+            assert!(b.soft_shadows <= a.soft_shadows && b.school_every >= a.school_every);
+            assert!(b != a);
+        }
+        assert_eq!(
+            LADDER[0],
+            rung(1.0, 1.0, true, 1),
+            "the top is full quality"
+        );
     }
 }

@@ -32,6 +32,8 @@ pub struct SceneSim {
     school: School,
     bodies: Vec<FloatingBody>,
     fish: Vec<FishInstance>,
+    /// the school steps once every this many fixed steps, by that many steps' time
+    school_every: u32,
 }
 
 /// Per-body figures for the presenter panel.
@@ -57,6 +59,7 @@ impl SceneSim {
             pending_secs: 0.0,
             bodies: Vec::new(),
             fish: Vec::new(),
+            school_every: 1,
             waves,
             school,
             scene,
@@ -68,6 +71,11 @@ impl SceneSim {
 
     pub fn dt_secs(&self) -> f64 {
         self.scene.simulation.dt_secs as f64
+    }
+
+    /// Fixed steps taken since t = 0.
+    pub fn steps(&self) -> u64 {
+        self.steps
     }
 
     pub fn time_secs(&self) -> f64 {
@@ -132,6 +140,14 @@ impl SceneSim {
         self.tick();
     }
 
+    /// The school takes one step of `n` fixed steps' time every `n` fixed steps (1 = every
+    /// step, the default). A window drawing a few frames a second sets more (the automatic
+    /// quality's lowest rungs): it shows one state of them per frame anyway. The state at a
+    /// time is reproducible for a given `n`.
+    pub fn set_school_every(&mut self, n: u32) {
+        self.school_every = n.clamp(1, 8);
+    }
+
     /// One fixed step. Live edits to the scene (fish count, school weights, waves) are
     /// picked up here.
     fn tick(&mut self) {
@@ -141,14 +157,20 @@ impl SceneSim {
             self.school.set_params(&self.scene.school, &env);
         }
         let dt = self.dt_secs();
-        self.school.step(dt as f32, &env);
+        let every = u64::from(self.school_every);
+        let school_steps = (self.steps + 1).is_multiple_of(every);
+        if school_steps {
+            self.school.step((dt * every as f64) as f32, &env);
+        }
         self.steps += 1;
         let t = self.time_secs();
         let method = self.scene.simulation.integrator;
         for b in &mut self.bodies {
             b.advance(t, &self.waves, &self.scene.simulation, method);
         }
-        self.school.fill_instances(&mut self.fish);
+        if school_steps {
+            self.school.fill_instances(&mut self.fish);
+        }
     }
 
     /// A reloaded scene replaces the model; camera and time stay where the lecturer left

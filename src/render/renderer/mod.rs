@@ -9,11 +9,10 @@ use std::path::{Path, PathBuf};
 use wgpu::util::DeviceExt;
 
 use crate::diag::Diagnostic;
-use crate::scene::{FrameSnapshot, Scene};
+use crate::scene::Scene;
 
 use super::caustics;
-use super::fish::LodView;
-use super::frame::{self, DebugView, Globals, RenderSettings};
+use super::frame::Globals;
 use super::pipeline::{BuildEnv, Layouts, Passes};
 use super::resources::SceneResources;
 use super::shadow;
@@ -22,6 +21,9 @@ use super::targets::{Targets, entry};
 use super::tonemap::PostParams;
 
 pub use super::shadow::SHADOW_MAP_SIZE;
+pub use encode::OutputDraw;
+
+mod encode;
 
 /// What the last frame drew, for the panel and the tests.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -29,7 +31,7 @@ pub struct FrameInfo {
     /// the HDR targets' size (the output's, times the render scale)
     pub render_size: (u32, u32),
     /// visible fish per level of detail, finest first
-    pub fish_per_lod: [u32; 3],
+    pub fish_per_lod: [u32; super::fish::LEVELS],
     /// every fish drawn into the shadow map
     pub fish_in_shadow: u32,
 }
@@ -273,224 +275,6 @@ impl Renderer {
             &self.post_params,
             &self.linear_clamp,
         ));
-    }
-
-    /// Records and submits one frame into `target` (of `output_format`, `size` pixels).
-    pub fn render(
-        &mut self,
-        scene: &Scene,
-        snap: &FrameSnapshot,
-        settings: &RenderSettings,
-        target: &wgpu::TextureView,
-        size: (u32, u32),
-    ) -> wgpu::SubmissionIndex {
-        let enc = self.encode(scene, snap, settings, target, size);
-        self.queue.submit([enc.finish()])
-    }
-
-    /// As `render`, but returns the recorded encoder unsubmitted (the benchmark times the CPU
-    /// side of recording separately from the GPU's work).
-    pub fn encode(
-        &mut self,
-        scene: &Scene,
-        snap: &FrameSnapshot,
-        settings: &RenderSettings,
-        target: &wgpu::TextureView,
-        size: (u32, u32),
-    ) -> wgpu::CommandEncoder {
-        let size = (size.0.max(1), size.1.max(1));
-        let inner = render_size(size, settings.render_scale);
-        self.ensure_targets(inner);
-        let caustics_size_px = caustics::map_size(settings.render_scale);
-        if caustics_size_px != self.caustics_size_px {
-            self.caustics_size_px = caustics_size_px;
-            self.caustics_view = caustics::caustics_map(&self.device, caustics_size_px);
-            // the lit passes' and the debug view's groups hold the map
-            self.env_changed();
-        }
-        let g = frame::globals(scene, snap, settings, inner, self.env.mips);
-        self.queue
-            .write_buffer(&self.globals, 0, bytemuck::bytes_of(&g));
-        let post = PostParams {
-            exposure: settings.exposure,
-            debug_view: settings.debug_view.code(),
-            env_mip_count: self.env.mips as f32,
-            _pad: 0.0,
-            viewport_size_px: [size.0 as f32, size.1 as f32],
-            _pad2: [0.0; 2],
-        };
-        self.queue
-            .write_buffer(&self.post_params, 0, bytemuck::bytes_of(&post));
-        let aspect = inner.0 as f32 / inner.1 as f32;
-        let lod_view = LodView {
-            clip_from_world: snap.camera.clip_from_view(aspect) * snap.camera.view_from_world(),
-            px_per_m_at_1m: inner.1 as f32 / (2.0 * (0.5 * snap.camera.fov_y_rad).tan()),
-            eye: snap.camera.eye,
-            detail: settings.fish_detail,
-        };
-        self.res
-            .update(&self.device, &self.queue, scene, snap, &lod_view);
-        let ranges = &self.res.fish_ranges;
-        self.info = FrameInfo {
-            render_size: inner,
-            fish_per_lod: ranges.visible.clone().map(|r| r.len() as u32),
-            fish_in_shadow: ranges.all.len() as u32,
-        };
-
-        let t = self.targets.as_ref().expect("targets made above");
-        let p = &self.passes;
-        let res = &self.res;
-        let mut enc = self
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("scene frame"),
-            });
-
-        // 1. shadow map from the sun: rocks, floating bodies, every fish at the coarsest level
-        {
-            let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("shadow"),
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &self.shadow_view,
-                    depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(1.0),
-                        store: wgpu::StoreOp::Store,
-                    }),
-                    stencil_ops: None,
-                }),
-                ..Default::default()
-            });
-            pass.set_pipeline(&p.shadow.current.pipeline);
-            pass.set_bind_group(0, &self.shadow_frame_group, &[]);
-            for o in res.objects.iter().filter(|o| o.casts_shadow) {
-                pass.set_bind_group(1, &o.bind_group, &[]);
-                o.mesh.draw(&mut pass, 1);
-            }
-            if !ranges.all.is_empty() {
-                pass.set_pipeline(&p.fish.current.shadow);
-                pass.set_bind_group(0, &self.shadow_frame_group, &[]);
-                pass.set_vertex_buffer(1, res.fish_instances.slice(..));
-                res.fish_meshes.lods[2].draw_instances(&mut pass, ranges.all.clone());
-            }
-        }
-
-        // 2. the caustics map, only while they are on (off, the lit shaders weigh it by 0) or
-        //    shown
-        if settings.caustics || settings.debug_view == DebugView::CausticsMap {
-            caustics::encode(
-                &mut enc,
-                &p.caustics.current,
-                &self.shadow_frame_group,
-                &self.caustics_view,
-            );
-        }
-
-        // 3. opaque HDR pass
-        {
-            let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("opaque"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &t.hdr_view,
-                    resolve_target: None,
-                    depth_slice: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &t.depth_view,
-                    depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(1.0),
-                        store: wgpu::StoreOp::Store,
-                    }),
-                    stencil_ops: None,
-                }),
-                ..Default::default()
-            });
-            pass.set_bind_group(0, &self.frame_group, &[]);
-            pass.set_pipeline(&p.pbr.current.pipeline);
-            for o in &res.objects {
-                pass.set_bind_group(1, &res.materials[o.material].bind_group, &[]);
-                pass.set_bind_group(2, &o.bind_group, &[]);
-                o.mesh.draw(&mut pass, 1);
-            }
-            if ranges.visible_count() > 0 {
-                pass.set_pipeline(&p.fish.current.main);
-                pass.set_bind_group(1, &res.materials[res.fish_material].bind_group, &[]);
-                pass.set_vertex_buffer(1, res.fish_instances.slice(..));
-                for (mesh, range) in res.fish_meshes.lods.iter().zip(&ranges.visible) {
-                    mesh.draw_instances(&mut pass, range.clone());
-                }
-            }
-            // last, so the depth test skips every covered pixel
-            pass.set_pipeline(&p.sky.current.background);
-            pass.draw(0..3, 0..1);
-        }
-
-        // 4. what lies below the water, for refraction
-        enc.copy_texture_to_texture(
-            t.hdr.as_image_copy(),
-            t.scene_color.as_image_copy(),
-            t.scene_color.size(),
-        );
-
-        // 5. water: depth tested against the opaque depth, which it also samples (read-only)
-        {
-            let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("water"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &t.hdr_view,
-                    resolve_target: None,
-                    depth_slice: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Load,
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &t.depth_view,
-                    depth_ops: None,
-                    stencil_ops: None,
-                }),
-                ..Default::default()
-            });
-            pass.set_pipeline(&p.water.current.pipeline);
-            pass.set_bind_group(0, &self.frame_group, &[]);
-            pass.set_bind_group(1, &t.water_inputs, &[]);
-            pass.set_vertex_buffer(0, res.water_vertices.slice(..));
-            pass.set_index_buffer(res.water_indices.slice(..), wgpu::IndexFormat::Uint32);
-            pass.draw_indexed(0..res.water_index_count, 0, 0..1);
-        }
-
-        // 6. to the display: tone map (scaling up), or a debug view
-        {
-            let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("output"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: target,
-                    resolve_target: None,
-                    depth_slice: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                ..Default::default()
-            });
-            match settings.debug_view {
-                DebugView::ShadowMap | DebugView::EnvCube | DebugView::CausticsMap => {
-                    pass.set_pipeline(&p.debug.current.pipeline);
-                    pass.set_bind_group(0, &self.debug_group, &[]);
-                }
-                DebugView::None | DebugView::Normals => {
-                    pass.set_pipeline(&p.tonemap.current.pipeline);
-                    pass.set_bind_group(0, &t.tonemap, &[]);
-                }
-            }
-            pass.draw(0..3, 0..1);
-        }
-        enc
     }
 }
 
