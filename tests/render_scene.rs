@@ -41,41 +41,48 @@ fn diff(a: &image::RgbaImage, b: &image::RgbaImage) -> (f64, f64) {
     (off as f64 / n, sum as f64 / (3.0 * n))
 }
 
-/// A channel may differ by this much (lavapipe and llvmpipe's GL differ by 1/255 here and
-/// there; renders on one adapter are byte-identical).
+/// For the measurements below: a channel off by more than this counts a pixel as changed.
 const PIXEL_TOL: u8 = 2;
-/// At most this fraction of pixels may exceed PIXEL_TOL (0.1 %: 230 pixels at 640×360) …
-const MAX_OFF_FRACTION: f64 = 0.001;
-/// … and the mean channel difference may be at most this.
-const MAX_MEAN_DIFF: f64 = 0.1;
 
-fn within_tolerance(a: &image::RgbaImage, b: &image::RgbaImage) -> bool {
-    let (off, mean) = diff(a, b);
-    off <= MAX_OFF_FRACTION && mean <= MAX_MEAN_DIFF
+/// The goldens are compared with egui_kittest's image snapshot: dify's weighted squared YIQ
+/// distance per pixel, anti-aliased pixels forgiven. A pixel fails above this distance (a
+/// uniform 2/255 step is ≈ 2.0; lavapipe and llvmpipe's GL differ by 1/255 here and there,
+/// renders on one adapter are byte-identical) …
+const SNAPSHOT_THRESHOLD: f32 = 2.0;
+/// … and at most this fraction of the pixels may fail (0.1 %: 230 pixels at 640×360).
+const MAX_FAILED_FRACTION: f64 = 0.001;
+
+fn max_failed_pixels(img: &image::RgbaImage) -> usize {
+    (MAX_FAILED_FRACTION * f64::from(img.width() * img.height())) as usize
 }
 
+/// Pixels the goldens' comparison (egui_kittest's, the same dify call) fails between `a` and `b`.
+fn failing_pixels(a: &image::RgbaImage, b: &image::RgbaImage) -> usize {
+    assert_eq!(a.dimensions(), b.dimensions());
+    dify::diff::get_results(
+        a.clone(),
+        b.clone(),
+        SNAPSHOT_THRESHOLD,
+        true,
+        None,
+        &None,
+        &None,
+    )
+    .map_or(0, |(n, _)| n.max(0) as usize)
+}
+
+/// Whether a golden recorded as `a` would accept `b`.
+fn within_tolerance(a: &image::RgbaImage, b: &image::RgbaImage) -> bool {
+    failing_pixels(a, b) <= max_failed_pixels(a)
+}
+
+/// Compares with (or, under `UPDATE_SNAPSHOTS=1`, records) `tests/snapshots/scene-{name}.png`
+/// through egui_kittest; a failure leaves `.new.png` and `.diff.png` beside it.
 fn golden(name: &str, img: &image::RgbaImage) {
-    let path = PathBuf::from(format!("tests/snapshots/scene-{name}.png"));
-    if std::env::var_os("UPDATE_SNAPSHOTS").is_some() || !path.exists() {
-        img.save(&path).unwrap();
-        assert!(
-            std::env::var_os("UPDATE_SNAPSHOTS").is_some(),
-            "recorded new golden {}; look at it and rerun",
-            path.display()
-        );
-        return;
-    }
-    let want = image::open(&path).unwrap().to_rgba8();
-    let (off, mean) = diff(img, &want);
-    if !(off <= MAX_OFF_FRACTION && mean <= MAX_MEAN_DIFF) {
-        let got = path.with_extension("new.png");
-        img.save(&got).unwrap();
-        panic!(
-            "{name}: {:.3}% pixels off, mean diff {mean:.3} (see {})",
-            off * 100.0,
-            got.display()
-        );
-    }
+    let options = egui_kittest::SnapshotOptions::new()
+        .threshold(SNAPSHOT_THRESHOLD)
+        .max_failed_pixels(max_failed_pixels(img));
+    egui_kittest::image_snapshot_options(img, format!("scene-{name}"), &options);
 }
 
 #[test]
@@ -384,19 +391,23 @@ fn the_golden_fails_without_the_fish_or_with_the_sun_moved() {
     let same = render(&|_| {});
     assert!(within_tolerance(&same, &want), "the unedited scene matches");
     let no_fish = render(&|s| s.school.count = 0);
-    let (off, mean) = diff(&no_fish, &want);
-    assert!(!within_tolerance(&no_fish, &want), "no fish: {off} {mean}");
+    let (n, max) = (failing_pixels(&no_fish, &want), max_failed_pixels(&want));
+    eprintln!("no fish: {n} pixels fail the golden's comparison (it allows {max})");
+    assert!(
+        !within_tolerance(&no_fish, &want),
+        "no fish: {n} pixels fail"
+    );
     // the sun 3 degrees further round: every shadow moves a little
     let moved = render(&|s| {
         let d = glam::Vec3::from(s.sun.direction);
         s.sun.direction = (glam::Quat::from_rotation_y(3f32.to_radians()) * d).to_array();
     });
-    let (off, mean) = diff(&moved, &want);
-    eprintln!(
-        "sun moved 3 degrees: {:.3} % of pixels off, mean {mean:.3}",
-        off * 100.0
+    let n = failing_pixels(&moved, &want);
+    eprintln!("sun moved 3 degrees: {n} pixels fail the golden's comparison (it allows {max})");
+    assert!(
+        !within_tolerance(&moved, &want),
+        "sun moved: {n} pixels fail"
     );
-    assert!(!within_tolerance(&moved, &want), "sun moved: {off} {mean}");
 }
 
 #[test]
