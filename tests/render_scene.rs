@@ -5,11 +5,13 @@
 //!
 //! Record new goldens with `UPDATE_SNAPSHOTS=1 cargo test --test render_scene`.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use lectern::render::frame::ShadowFilter;
 use lectern::render::{DebugView, Headless, shaders};
 use lectern::scene;
+
+mod common;
 
 const SIZE: (u32, u32) = (320, 180);
 /// The golden images: large enough that a fish is several pixels long.
@@ -44,44 +46,16 @@ fn diff(a: &image::RgbaImage, b: &image::RgbaImage) -> (f64, f64) {
 /// For the measurements below: a channel off by more than this counts a pixel as changed.
 const PIXEL_TOL: u8 = 2;
 
-/// The goldens are compared with egui_kittest's image snapshot: dify's weighted squared YIQ
-/// distance per pixel, anti-aliased pixels forgiven. A pixel fails above this distance (a
-/// uniform 2/255 step is ≈ 2.0; lavapipe and llvmpipe's GL differ by 1/255 here and there,
-/// renders on one adapter are byte-identical) …
-const SNAPSHOT_THRESHOLD: f32 = 2.0;
-/// … and at most this fraction of the pixels may fail (0.1 %: 230 pixels at 640×360).
-const MAX_FAILED_FRACTION: f64 = 0.001;
-
-fn max_failed_pixels(img: &image::RgbaImage) -> usize {
-    (MAX_FAILED_FRACTION * f64::from(img.width() * img.height())) as usize
-}
-
-/// Pixels the goldens' comparison (egui_kittest's, the same dify call) fails between `a` and `b`.
-fn failing_pixels(a: &image::RgbaImage, b: &image::RgbaImage) -> usize {
-    assert_eq!(a.dimensions(), b.dimensions());
-    dify::diff::get_results(
-        a.clone(),
-        b.clone(),
-        SNAPSHOT_THRESHOLD,
-        true,
-        None,
-        &None,
-        &None,
-    )
-    .map_or(0, |(n, _)| n.max(0) as usize)
-}
-
-/// Whether a golden recorded as `a` would accept `b`.
+/// Whether a golden recorded as `a` would accept `b` (egui_kittest's comparison; see
+/// `common::scene_within_tolerance`).
 fn within_tolerance(a: &image::RgbaImage, b: &image::RgbaImage) -> bool {
-    failing_pixels(a, b) <= max_failed_pixels(a)
+    common::scene_within_tolerance(a, b)
 }
 
 /// Compares with (or, under `UPDATE_SNAPSHOTS=1`, records) `tests/snapshots/scene-{name}.png`
 /// through egui_kittest; a failure leaves `.new.png` and `.diff.png` beside it.
 fn golden(name: &str, img: &image::RgbaImage) {
-    let options = egui_kittest::SnapshotOptions::new()
-        .threshold(SNAPSHOT_THRESHOLD)
-        .max_failed_pixels(max_failed_pixels(img));
+    let options = common::scene_snapshot_options(img);
     egui_kittest::image_snapshot_options(img, format!("scene-{name}"), &options);
 }
 
@@ -391,7 +365,10 @@ fn the_golden_fails_without_the_fish_or_with_the_sun_moved() {
     let same = render(&|_| {});
     assert!(within_tolerance(&same, &want), "the unedited scene matches");
     let no_fish = render(&|s| s.school.count = 0);
-    let (n, max) = (failing_pixels(&no_fish, &want), max_failed_pixels(&want));
+    let (n, max) = (
+        common::scene_failing_pixels(&no_fish, &want),
+        common::scene_max_failed_pixels(&want),
+    );
     eprintln!("no fish: {n} pixels fail the golden's comparison (it allows {max})");
     assert!(
         !within_tolerance(&no_fish, &want),
@@ -402,7 +379,7 @@ fn the_golden_fails_without_the_fish_or_with_the_sun_moved() {
         let d = glam::Vec3::from(s.sun.direction);
         s.sun.direction = (glam::Quat::from_rotation_y(3f32.to_radians()) * d).to_array();
     });
-    let n = failing_pixels(&moved, &want);
+    let n = common::scene_failing_pixels(&moved, &want);
     eprintln!("sun moved 3 degrees: {n} pixels fail the golden's comparison (it allows {max})");
     assert!(
         !within_tolerance(&moved, &want),

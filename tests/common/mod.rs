@@ -23,3 +23,41 @@ pub fn lecture_copy() -> (tempfile::TempDir, PathBuf) {
 
 /// The circle x' = −y, y' = x written inline, for small test decks.
 pub const CIRCLE: &str = r#"ode: Inline((vars: ["x", "y"], rhs: ["-y", "x"], initial: [1.0, 0.0], exact: Some(["x*cos(t - t0) - y*sin(t - t0)", "x*sin(t - t0) + y*cos(t - t0)"])))"#;
+
+/// The scene goldens' comparison (egui_kittest's image snapshot, the same dify call): a pixel
+/// fails above this weighted squared YIQ distance (a uniform 2/255 step is ≈ 2.0; lavapipe and
+/// llvmpipe's GL differ by 1/255 here and there, renders on one adapter are byte-identical) …
+pub const SCENE_SNAPSHOT_THRESHOLD: f32 = 2.0;
+/// … and at most this fraction of the pixels may fail (0.1 %: 230 pixels at 640×360).
+pub const SCENE_MAX_FAILED_FRACTION: f64 = 0.001;
+
+pub fn scene_max_failed_pixels(img: &image::RgbaImage) -> usize {
+    (SCENE_MAX_FAILED_FRACTION * f64::from(img.width() * img.height())) as usize
+}
+
+/// Pixels the scene goldens' comparison fails between `a` and `b`.
+pub fn scene_failing_pixels(a: &image::RgbaImage, b: &image::RgbaImage) -> usize {
+    assert_eq!(a.dimensions(), b.dimensions());
+    dify::diff::get_results(
+        a.clone(),
+        b.clone(),
+        SCENE_SNAPSHOT_THRESHOLD,
+        true,
+        None,
+        &None,
+        &None,
+    )
+    .map_or(0, |(n, _)| n.max(0) as usize)
+}
+
+/// Whether a scene golden recorded as `a` would accept `b`.
+pub fn scene_within_tolerance(a: &image::RgbaImage, b: &image::RgbaImage) -> bool {
+    scene_failing_pixels(a, b) <= scene_max_failed_pixels(a)
+}
+
+/// egui_kittest's snapshot options for the scene goldens of `img`'s size.
+pub fn scene_snapshot_options(img: &image::RgbaImage) -> egui_kittest::SnapshotOptions {
+    egui_kittest::SnapshotOptions::new()
+        .threshold(SCENE_SNAPSHOT_THRESHOLD)
+        .max_failed_pixels(scene_max_failed_pixels(img))
+}
