@@ -14,7 +14,8 @@ use std::sync::{Mutex, OnceLock};
 use crate::diag::Diagnostic;
 
 use super::gpu::Gpu;
-use super::pipeline::{BuildEnv, Layouts, TECHNIQUE_SHADERS, check_techniques};
+use super::layouts::Layouts;
+use super::pipeline::{BuildEnv, TECHNIQUE_SHADERS, check_techniques};
 use super::shaders;
 
 /// The output format the renderer is built for in the app and headless alike.

@@ -2,7 +2,8 @@
 //! unfolded with its roughness mips, and the caustics map seen from above, drawn straight into
 //! the display target.
 
-use super::pipeline::{Ctx, FLOAT, Layout, PipelineDesc, Technique, sampler, texture, uniform};
+use super::layouts::{FLOAT, Layout, sampler, texture, uniform};
+use super::pipeline::{Ctx, PipelineDesc, Technique};
 use super::tonemap::PostParams;
 
 /// Group 0 of the debug views: parameters, the shadow map, the environment cube, a sampler,

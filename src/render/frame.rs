@@ -10,7 +10,7 @@ use crate::scene::quality::Rung;
 use crate::scene::snapshot::{FAR_M, NEAR_M};
 use crate::scene::{FrameSnapshot, Scene};
 
-use super::pipeline::{FLOAT, Layout, sampler, texture, uniform};
+use super::layouts::{FLOAT, Layout, sampler, texture, uniform};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum DebugView {

@@ -14,6 +14,7 @@ pub mod frame;
 pub mod gpu;
 pub mod headless;
 pub mod interface;
+pub mod layouts;
 pub mod mesh;
 pub mod normal_map;
 pub mod pbr;

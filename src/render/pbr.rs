@@ -7,11 +7,9 @@ use bytemuck::{Pod, Zeroable};
 
 use crate::scene::Material;
 
+use super::layouts::{FLOAT, Layout, sampler, texture, uniform};
 use super::mesh::Vertex;
-use super::pipeline::{
-    Ctx, FLOAT, HDR_FORMAT, Layout, OPAQUE_DEPTH, PerShadowFilter, PipelineDesc, Technique,
-    sampler, texture, uniform,
-};
+use super::pipeline::{Ctx, HDR_FORMAT, OPAQUE_DEPTH, PerShadowFilter, PipelineDesc, Technique};
 
 /// `MaterialParams` in brdf.wgsl.
 #[repr(C)]

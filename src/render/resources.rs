@@ -9,10 +9,10 @@ use wgpu::util::DeviceExt;
 use crate::scene::{FrameSnapshot, Material, NormalPattern, Object, Scene, Shape};
 
 use super::fish::{FishInstanceGpu, FishMeshes, LodRanges, LodSorter, LodView};
+use super::layouts::Layouts;
 use super::mesh::{self, GpuMesh};
 use super::normal_map;
 use super::pbr::{MaterialGpu, ObjectGpu};
-use super::pipeline::Layouts;
 
 pub struct MaterialRes {
     pub uniform: wgpu::Buffer,

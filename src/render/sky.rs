@@ -8,10 +8,8 @@ use wgpu::util::DeviceExt;
 
 use crate::scene::Scene;
 
-use super::pipeline::{
-    CUBE_FORMAT, Ctx, FLOAT, HDR_FORMAT, Layout, Layouts, NO_BIAS, PipelineDesc, Technique,
-    sampler, texture, uniform,
-};
+use super::layouts::{FLOAT, Layout, Layouts, sampler, texture, uniform};
+use super::pipeline::{CUBE_FORMAT, Ctx, HDR_FORMAT, NO_BIAS, PipelineDesc, Technique};
 
 /// Group 1 of the cube-face pass: the sky's colours and the face being drawn.
 pub fn params_layout(device: &wgpu::Device) -> Layout {

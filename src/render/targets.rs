@@ -2,7 +2,8 @@
 //! render size, which dynamic resolution may make smaller than the display), the copy of the
 //! opaque colour the water refracts, and the bind groups that read them.
 
-use super::pipeline::{DEPTH_FORMAT, HDR_FORMAT, Layouts};
+use super::layouts::Layouts;
+use super::pipeline::{DEPTH_FORMAT, HDR_FORMAT};
 
 pub fn texture_2d(
     device: &wgpu::Device,

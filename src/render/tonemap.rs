@@ -4,7 +4,8 @@
 
 use bytemuck::{Pod, Zeroable};
 
-use super::pipeline::{Ctx, FLOAT, Layout, PipelineDesc, Technique, sampler, texture, uniform};
+use super::layouts::{FLOAT, Layout, sampler, texture, uniform};
+use super::pipeline::{Ctx, PipelineDesc, Technique};
 
 /// `Post` in tonemap.wgsl and debug.wgsl.
 #[repr(C)]

@@ -3,10 +3,8 @@
 //! refracted opaque image, absorbed along the path through the water (Beer–Lambert). It reads
 //! a copy of the opaque colour and the opaque depth (its inputs bind group, defined here).
 
-use super::pipeline::{
-    Ctx, FLOAT, HDR_FORMAT, Layout, NO_BIAS, PerShadowFilter, PipelineDesc, Technique, sampler,
-    texture,
-};
+use super::layouts::{FLOAT, Layout, sampler, texture};
+use super::pipeline::{Ctx, HDR_FORMAT, NO_BIAS, PerShadowFilter, PipelineDesc, Technique};
 
 /// Group 1 of the water: the opaque colour (a copy), the opaque depth, a sampler.
 pub fn inputs_layout(device: &wgpu::Device) -> Layout {

@@ -13,7 +13,8 @@ use crate::scene::Scene;
 
 use super::caustics;
 use super::frame::Globals;
-use super::pipeline::{BuildEnv, Layouts, Passes};
+use super::layouts::Layouts;
+use super::pipeline::{BuildEnv, Passes};
 use super::resources::SceneResources;
 use super::shadow;
 use super::sky::{self, Environment, SkyKey};
