@@ -348,6 +348,36 @@ fn the_bilinear_shadow_filter_keeps_the_shadows_and_changes_only_their_edges() {
     );
 }
 
+/// The coarse grids of the lowest rungs draw the same surfaces with a quarter of the
+/// triangles: at those rungs' render scale the picture changes only slightly, and it does
+/// change (the coarse lists are drawn).
+#[test]
+fn coarse_grids_draw_the_same_water_and_seabed_with_a_quarter_of_the_triangles() {
+    let mut h = headless(Path::new("shaders"));
+    h.sim.set_time(2.5);
+    let rung = scene::quality::LADDER
+        .iter()
+        .find(|r| r.coarse_grids)
+        .unwrap();
+    h.settings.render_scale = rung.render_scale;
+    let full = h.render(GOLDEN_SIZE).unwrap();
+    h.settings.coarse_grids = true;
+    let coarse = h.render(GOLDEN_SIZE).unwrap();
+    h.settings.shadows = false;
+    let unshadowed = h.render(GOLDEN_SIZE).unwrap();
+    let (frac, mean) = diff(&coarse, &full);
+    let (_, shadow_mean) = diff(&unshadowed, &coarse);
+    eprintln!(
+        "coarse vs full grids: {:.2} % of pixels, mean {mean:.3} (shadows off: mean \
+         {shadow_mean:.3})",
+        frac * 100.0
+    );
+    assert!(mean > 0.0, "the coarse lists made no difference at all");
+    assert!(mean < 0.5 * shadow_mean, "{mean} vs {shadow_mean}");
+    let r = &h.renderer;
+    assert_eq!(r.water_index_count_coarse() * 4, r.water_index_count());
+}
+
 /// The tolerance is tight enough that the golden catches a missing school or a moved sun.
 #[test]
 fn the_golden_fails_without_the_fish_or_with_the_sun_moved() {

@@ -201,7 +201,8 @@ impl SceneMode {
         ui.label(what);
         ui.monospace(format!(
             "render {}×{} px ({:.0} %), fish detail {:.2}\nfish drawn full/medium/coarse/far: {}/{}/{}/{}\n\
-             shadow edges {}, school stepped every {} · frame {:.0} ms",
+             shadow edges {}, school stepped every {}, water and seabed grids {} · frame \
+             {:.0} ms",
             info.render_size.0,
             info.render_size.1,
             rung.render_scale * 100.0,
@@ -218,6 +219,11 @@ impl SceneMode {
             match rung.school_every {
                 1 => "step".to_owned(),
                 n => format!("{n} steps"),
+            },
+            if rung.coarse_grids {
+                "every other vertex"
+            } else {
+                "full"
             },
             mean(&self.interval_ms),
         ));

@@ -47,7 +47,7 @@ pub fn fish_lod(rings: u32, segments: u32) -> MeshData {
             m.uvs.push(Vec2::new(s * 3.0, cp * 0.5 + 0.5));
         }
     }
-    m.indices = grid_indices(segments, rings, false);
+    m.indices = grid_indices(segments, rings, 1);
     // the fork: top tip, the notch, bottom tip
     tail_fin(
         &mut m,

@@ -96,6 +96,10 @@ pub struct RenderSettings {
     /// switch to the coarser meshes nearer the camera (see [`super::fish::LodView`]).
     pub fish_detail: f32,
     pub shadow_filter: ShadowFilter,
+    /// Draw the water and seabed grids over every other row and column of their vertices (a
+    /// quarter of the triangles; the lowest quality rungs, where the grid had more triangles
+    /// than the frame had pixels).
+    pub coarse_grids: bool,
 }
 
 impl RenderSettings {
@@ -109,6 +113,7 @@ impl RenderSettings {
         } else {
             ShadowFilter::Bilinear
         };
+        self.coarse_grids = rung.coarse_grids;
     }
 }
 
@@ -126,6 +131,7 @@ impl Default for RenderSettings {
             render_scale: 1.0,
             fish_detail: 1.0,
             shadow_filter: ShadowFilter::Pcf3x3,
+            coarse_grids: false,
         }
     }
 }

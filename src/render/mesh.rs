@@ -36,6 +36,8 @@ pub struct MeshData {
     pub normals: Vec<Vec3>,
     pub uvs: Vec<Vec2>,
     pub indices: Vec<u32>,
+    /// grids only: the same surface over fewer of its vertices (see [`grid_indices`])
+    pub coarse_indices: Option<Vec<u32>>,
 }
 
 impl MeshData {
@@ -107,6 +109,8 @@ pub struct GpuMesh {
     pub vertex_buffer: wgpu::Buffer,
     pub index_buffer: wgpu::Buffer,
     pub index_count: u32,
+    /// the coarse index list of a grid, and its length
+    pub coarse: Option<(wgpu::Buffer, u32)>,
 }
 
 impl GpuMesh {
@@ -124,6 +128,26 @@ impl GpuMesh {
                 usage: wgpu::BufferUsages::INDEX,
             }),
             index_count: mesh.indices.len() as u32,
+            coarse: mesh.coarse_indices.as_ref().map(|idx| {
+                let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some(label),
+                    contents: bytemuck::cast_slice(idx),
+                    usage: wgpu::BufferUsages::INDEX,
+                });
+                (buffer, idx.len() as u32)
+            }),
+        }
+    }
+
+    /// One instance, with the coarse index list when asked and there is one.
+    pub fn draw_detail(&self, pass: &mut wgpu::RenderPass<'_>, coarse: bool) {
+        match (&self.coarse, coarse) {
+            (Some((indices, count)), true) => {
+                pass.set_vertex_buffer(0, self.vertex_buffer.slice(..));
+                pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
+                pass.draw_indexed(0..*count, 0, 0..1);
+            }
+            _ => self.draw(pass, 1),
         }
     }
 
@@ -147,24 +171,31 @@ impl GpuMesh {
 }
 
 /// Indices of a (cols+1)×(rows+1) vertex grid, counter-clockwise seen from +normal when u runs
-/// along +x and v along −z (or, for surfaces, with the generator's orientation).
-pub(super) fn grid_indices(cols: u32, rows: u32, flip: bool) -> Vec<u32> {
-    let mut idx = Vec::with_capacity((cols * rows * 6) as usize);
-    for r in 0..rows {
-        for c in 0..cols {
-            let i0 = r * (cols + 1) + c;
-            let i1 = i0 + 1;
-            let i2 = i0 + cols + 1;
-            let i3 = i2 + 1;
-            if flip {
-                idx.extend_from_slice(&[i0, i1, i2, i1, i3, i2]);
-            } else {
-                idx.extend_from_slice(&[i0, i2, i1, i1, i2, i3]);
-            }
+/// along +x and v along −z (or, for surfaces, with the generator's orientation), over every
+/// `step`-th row and column of vertices (and the last, so the same area is covered): `step` 2
+/// is a level of detail with a quarter of the triangles that needs no vertices of its own.
+pub(super) fn grid_indices(cols: u32, rows: u32, step: u32) -> Vec<u32> {
+    let lines = |n: u32| -> Vec<u32> {
+        let mut v: Vec<u32> = (0..n).step_by(step.max(1) as usize).collect();
+        v.push(n);
+        v
+    };
+    let (cs, rs) = (lines(cols), lines(rows));
+    let mut idx = Vec::with_capacity(cs.len() * rs.len() * 6);
+    for r in rs.windows(2) {
+        for c in cs.windows(2) {
+            let i0 = r[0] * (cols + 1) + c[0];
+            let i1 = r[0] * (cols + 1) + c[1];
+            let i2 = r[1] * (cols + 1) + c[0];
+            let i3 = r[1] * (cols + 1) + c[1];
+            idx.extend_from_slice(&[i0, i2, i1, i1, i2, i3]);
         }
     }
     idx
 }
+
+/// The step of the coarse index lists over the water and seabed grids.
+pub const COARSE_GRID_STEP: u32 = 2;
 
 /// Seabed dunes: height above the floor level at (x, z), metres per unit `relief`.
 pub fn dunes(x: f32, z: f32) -> f32 {
@@ -194,7 +225,8 @@ pub fn terrain(size: f32, resolution: u32, floor_y: f32, relief: f32) -> MeshDat
             m.uvs.push(Vec2::new(x, z));
         }
     }
-    m.indices = grid_indices(n, n, false);
+    m.indices = grid_indices(n, n, 1);
+    m.coarse_indices = Some(grid_indices(n, n, COARSE_GRID_STEP));
     m
 }
 
@@ -222,7 +254,7 @@ pub fn capsule(radius: f32, half_length: f32, rings: u32, segments: u32) -> Mesh
             ));
         }
     }
-    m.indices = grid_indices(segments, rings + 1, false);
+    m.indices = grid_indices(segments, rings + 1, 1);
     m
 }
 
@@ -298,8 +330,9 @@ pub fn rock(radius: f32, seed: u32) -> MeshData {
     m
 }
 
-/// The water grid: only rest (x, z) positions; the vertex shader displaces them.
-pub fn water_grid(size: f32, resolution: u32) -> (Vec<[f32; 2]>, Vec<u32>) {
+/// The water grid: only rest (x, z) positions (the vertex shader displaces them), its indices
+/// and its coarse indices (every [`COARSE_GRID_STEP`]-th row and column).
+pub fn water_grid(size: f32, resolution: u32) -> (Vec<[f32; 2]>, Vec<u32>, Vec<u32>) {
     let n = resolution.max(2);
     let mut v = Vec::with_capacity(((n + 1) * (n + 1)) as usize);
     for j in 0..=n {
@@ -315,7 +348,11 @@ pub fn water_grid(size: f32, resolution: u32) -> (Vec<[f32; 2]>, Vec<u32>) {
             ]);
         }
     }
-    (v, grid_indices(n, n, false))
+    (
+        v,
+        grid_indices(n, n, 1),
+        grid_indices(n, n, COARSE_GRID_STEP),
+    )
 }
 
 #[cfg(test)]
@@ -345,6 +382,33 @@ mod tests {
     fn closed_meshes_wind_counter_clockwise_outwards() {
         assert_eq!(outward(&cuboid(Vec3::new(1.0, 2.0, 3.0)), Vec3::ZERO), 1.0);
         assert!(outward(&capsule(1.0, 0.5, 12, 16), Vec3::ZERO) > 0.99);
+    }
+
+    /// The coarse list covers the same area with a quarter of the triangles (and an odd side
+    /// keeps its last row), wound the same way.
+    #[test]
+    fn coarse_grid_indices_cover_the_same_surface() {
+        for n in [8u32, 9, 192] {
+            let t = terrain(10.0, n, -3.0, 0.0);
+            let area = |idx: &[u32]| -> f64 {
+                idx.chunks_exact(3)
+                    .map(|tri| {
+                        let [a, b, c] = [tri[0], tri[1], tri[2]].map(|i| t.positions[i as usize]);
+                        let n = (b - a).cross(c - a);
+                        assert!(n.y > 0.0, "faces up");
+                        0.5 * f64::from(n.y)
+                    })
+                    .sum()
+            };
+            let coarse = t.coarse_indices.as_ref().unwrap();
+            let (a_coarse, a_full) = (area(coarse), area(&t.indices));
+            assert!(
+                (a_coarse - 100.0).abs() < 1e-2 && (a_full - 100.0).abs() < 1e-2,
+                "{n}: {a_coarse} {a_full}"
+            );
+            let cells = n.div_ceil(COARSE_GRID_STEP);
+            assert_eq!(coarse.len() as u32, cells * cells * 6);
+        }
     }
 
     #[test]

@@ -49,8 +49,19 @@ pub struct SceneResources {
     pub water_vertices: wgpu::Buffer,
     pub water_indices: wgpu::Buffer,
     pub water_index_count: u32,
+    /// every other row and column of the same grid (a quarter of the triangles)
+    pub water_indices_coarse: wgpu::Buffer,
+    pub water_index_count_coarse: u32,
     /// (size in metres, vertices per side) the water grid was built for
     water_grid_for: (f32, u32),
+}
+
+fn index_buffer(device: &wgpu::Device, indices: &[u32]) -> wgpu::Buffer {
+    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("water grid"),
+        contents: bytemuck::cast_slice(indices),
+        usage: wgpu::BufferUsages::INDEX,
+    })
 }
 
 fn normal_texture(
@@ -204,7 +215,7 @@ impl SceneResources {
         let fish_material = scene
             .material_index("fish_skin")
             .unwrap_or(scene.materials.len() - 1);
-        let (grid, indices) = mesh::water_grid(scene.water.size, scene.water.resolution);
+        let (grid, indices, coarse) = mesh::water_grid(scene.water.size, scene.water.resolution);
         let fish_capacity = scene.school.count.max(1);
         Self {
             materials,
@@ -221,12 +232,10 @@ impl SceneResources {
                 contents: bytemuck::cast_slice(&grid),
                 usage: wgpu::BufferUsages::VERTEX,
             }),
-            water_indices: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("water grid"),
-                contents: bytemuck::cast_slice(&indices),
-                usage: wgpu::BufferUsages::INDEX,
-            }),
+            water_indices: index_buffer(device, &indices),
             water_index_count: indices.len() as u32,
+            water_indices_coarse: index_buffer(device, &coarse),
+            water_index_count_coarse: coarse.len() as u32,
             water_grid_for: (scene.water.size, scene.water.resolution),
         }
     }
@@ -237,18 +246,16 @@ impl SceneResources {
         if want == self.water_grid_for {
             return;
         }
-        let (grid, indices) = mesh::water_grid(want.0, want.1);
+        let (grid, indices, coarse) = mesh::water_grid(want.0, want.1);
         self.water_vertices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("water grid"),
             contents: bytemuck::cast_slice(&grid),
             usage: wgpu::BufferUsages::VERTEX,
         });
-        self.water_indices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("water grid"),
-            contents: bytemuck::cast_slice(&indices),
-            usage: wgpu::BufferUsages::INDEX,
-        });
+        self.water_indices = index_buffer(device, &indices);
         self.water_index_count = indices.len() as u32;
+        self.water_indices_coarse = index_buffer(device, &coarse);
+        self.water_index_count_coarse = coarse.len() as u32;
         self.water_grid_for = want;
     }
 

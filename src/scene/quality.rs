@@ -1,5 +1,6 @@
 //! The automatic quality setting: a frame-time budget held by stepping down (or back up) a
-//! ladder of render scale, fish detail, shadow filtering and how often the school is stepped.
+//! ladder of render scale, fish detail, shadow filtering, how often the school is stepped and
+//! how many of the water and seabed grids' vertices are used.
 //! Pure logic — fed measured frame times, it says what to draw and simulate with — so the
 //! window, the tests and anything else can drive it.
 
@@ -19,6 +20,8 @@ pub struct Rung {
     /// (a window this slow shows at most one of them anyway); the floating bodies still
     /// take every step
     pub school_every: u32,
+    /// the water and seabed grids over every other row and column of their vertices
+    pub coarse_grids: bool,
 }
 
 const fn rung(render_scale: f32, fish_detail: f32, soft_shadows: bool, school_every: u32) -> Rung {
@@ -27,6 +30,9 @@ const fn rung(render_scale: f32, fish_detail: f32, soft_shadows: bool, school_ev
         fish_detail,
         soft_shadows,
         school_every,
+        // with one shadow tap: the rungs drawn at half the window's size or less, where the
+        // full grids had more triangles than the frame had pixels
+        coarse_grids: !soft_shadows,
     }
 }
 
@@ -197,6 +203,7 @@ mod tests {
             let (a, b) = (&w[0], &w[1]);
             assert!(b.render_scale <= a.render_scale && b.fish_detail <= a.fish_detail);
             assert!(b.soft_shadows <= a.soft_shadows && b.school_every >= a.school_every);
+            assert!(b.coarse_grids >= a.coarse_grids);
             assert!(b != a);
         }
         assert_eq!(

@@ -217,7 +217,7 @@ impl Renderer {
             for o in &res.objects {
                 pass.set_bind_group(1, &res.materials[o.material].bind_group, &[]);
                 pass.set_bind_group(2, &o.bind_group, &[]);
-                o.mesh.draw(&mut pass, 1);
+                o.mesh.draw_detail(&mut pass, settings.coarse_grids);
             }
             if ranges.visible_count() > 0 {
                 pass.set_pipeline(p.fish.current.main.get(settings.shadow_filter));
@@ -263,8 +263,13 @@ impl Renderer {
             pass.set_bind_group(0, &self.frame_group, &[]);
             pass.set_bind_group(1, &t.water_inputs, &[]);
             pass.set_vertex_buffer(0, res.water_vertices.slice(..));
-            pass.set_index_buffer(res.water_indices.slice(..), wgpu::IndexFormat::Uint32);
-            pass.draw_indexed(0..res.water_index_count, 0, 0..1);
+            let (indices, count) = if settings.coarse_grids {
+                (&res.water_indices_coarse, res.water_index_count_coarse)
+            } else {
+                (&res.water_indices, res.water_index_count)
+            };
+            pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
+            pass.draw_indexed(0..count, 0, 0..1);
         }
         enc
     }

@@ -256,6 +256,11 @@ impl Renderer {
         self.res.water_index_count
     }
 
+    /// Indices of the water grid's coarse list (every other row and column).
+    pub fn water_index_count_coarse(&self) -> u32 {
+        self.res.water_index_count_coarse
+    }
+
     pub fn output_format(&self) -> wgpu::TextureFormat {
         self.output_format
     }
