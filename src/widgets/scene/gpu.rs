@@ -12,7 +12,7 @@ use crate::scene::Scene;
 /// Quiet time after a save before the scene's files are re-read (as scene mode).
 const RELOAD_DEBOUNCE: std::time::Duration = std::time::Duration::from_millis(80);
 
-/// The format the scene is rendered in (as scene mode and `render-scene`).
+/// The format a slide's scene is rendered in (as `render-scene`'s).
 pub const OUTPUT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
 /// The same bytes as egui reads them.
 const EGUI_VIEW_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
@@ -195,8 +195,10 @@ pub struct SceneTexture {
 }
 
 /// Makes a `size` texture for the scene and hands it to egui: under `reuse` (the id of the
-/// texture it replaces, so the frame that shows it needs no new id) or a new id. Scene mode
-/// and the Scene widget both show the renderer's output this way.
+/// texture it replaces, so the frame that shows it needs no new id) or a new id. The Scene
+/// widget renders into it only when its picture changes and egui shows it every frame; scene
+/// mode, which draws a new picture every frame, draws into egui's own pass instead
+/// (`app::scene_mode`), so the picture is not written twice.
 pub fn scene_texture(
     rs: &egui_wgpu::RenderState,
     label: &str,
