@@ -5,6 +5,7 @@
 //! flat water would let through). The lit shaders multiply the sun's direct light by it
 //! (`caustics_light` in common.wgsl), read at each point's xz shifted along the refracted sun.
 
+use super::targets::cleared_color;
 use crate::scene::Scene;
 
 use super::pipeline::{Ctx, PipelineDesc, Technique};
@@ -98,15 +99,7 @@ pub fn encode(
 ) {
     let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
         label: Some("caustics"),
-        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-            view: map,
-            resolve_target: None,
-            depth_slice: None,
-            ops: wgpu::Operations {
-                load: wgpu::LoadOp::Clear(wgpu::Color::WHITE),
-                store: wgpu::StoreOp::Store,
-            },
-        })],
+        color_attachments: &[cleared_color(map, wgpu::Color::WHITE)],
         ..Default::default()
     });
     pass.set_pipeline(&pipeline.pipeline);

@@ -50,20 +50,13 @@ impl Headless {
             .as_ref()
             .is_none_or(|(t, _)| (t.width(), t.height()) != size);
         if stale {
-            let texture = self.gpu.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some("headless output"),
-                size: wgpu::Extent3d {
-                    width: size.0,
-                    height: size.1,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: OUTPUT_FORMAT,
-                usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-                view_formats: &[],
-            });
+            let texture = super::targets::texture_2d(
+                &self.gpu.device,
+                "headless output",
+                size,
+                OUTPUT_FORMAT,
+                wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+            );
             let view = texture.create_view(&Default::default());
             self.target = Some((texture, view));
         }

@@ -3,6 +3,7 @@
 //! roughness-blurred mips (prefilter.wgsl; the split-sum prefiltering of Karis 2013). The cube
 //! is made when the sky or the sun changes, never per frame.
 
+use super::targets::cleared_color;
 use bytemuck::{Pod, Zeroable};
 use wgpu::util::DeviceExt;
 
@@ -186,15 +187,7 @@ fn fullscreen_pass(
 ) {
     let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
         label: Some("cube face"),
-        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-            view,
-            resolve_target: None,
-            depth_slice: None,
-            ops: wgpu::Operations {
-                load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                store: wgpu::StoreOp::Store,
-            },
-        })],
+        color_attachments: &[cleared_color(view, wgpu::Color::BLACK)],
         ..Default::default()
     });
     pass.set_pipeline(pipeline);

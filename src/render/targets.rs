@@ -5,6 +5,36 @@
 use super::layouts::Layouts;
 use super::pipeline::{DEPTH_FORMAT, HDR_FORMAT};
 
+/// A colour attachment cleared to `clear` and stored (every pass that draws a new target).
+pub fn cleared_color(
+    view: &wgpu::TextureView,
+    clear: wgpu::Color,
+) -> Option<wgpu::RenderPassColorAttachment<'_>> {
+    Some(wgpu::RenderPassColorAttachment {
+        view,
+        resolve_target: None,
+        depth_slice: None,
+        ops: wgpu::Operations {
+            load: wgpu::LoadOp::Clear(clear),
+            store: wgpu::StoreOp::Store,
+        },
+    })
+}
+
+/// A depth attachment cleared to the far plane and stored.
+pub fn cleared_depth(
+    view: &wgpu::TextureView,
+) -> Option<wgpu::RenderPassDepthStencilAttachment<'_>> {
+    Some(wgpu::RenderPassDepthStencilAttachment {
+        view,
+        depth_ops: Some(wgpu::Operations {
+            load: wgpu::LoadOp::Clear(1.0),
+            store: wgpu::StoreOp::Store,
+        }),
+        stencil_ops: None,
+    })
+}
+
 pub fn texture_2d(
     device: &wgpu::Device,
     label: &str,

@@ -3,6 +3,7 @@
 //! owns (scene mode draws straight into egui's pass over the window, so the picture is not
 //! drawn once into a texture and again by egui).
 
+use crate::render::targets::{cleared_color, cleared_depth};
 use crate::scene::{FrameSnapshot, Scene};
 
 use super::{FrameInfo, Renderer, render_size};
@@ -56,15 +57,7 @@ impl Renderer {
         let mut enc = self.encode_scene(scene, snap, settings, size);
         let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("output"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: target,
-                resolve_target: None,
-                depth_slice: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
+            color_attachments: &[cleared_color(target, wgpu::Color::BLACK)],
             ..Default::default()
         });
         if let Some(output) = self.output(settings) {
@@ -154,14 +147,7 @@ impl Renderer {
         {
             let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("shadow"),
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &self.shadow_view,
-                    depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(1.0),
-                        store: wgpu::StoreOp::Store,
-                    }),
-                    stencil_ops: None,
-                }),
+                depth_stencil_attachment: cleared_depth(&self.shadow_view),
                 ..Default::default()
             });
             pass.set_pipeline(&p.shadow.current.pipeline);
@@ -193,23 +179,8 @@ impl Renderer {
         {
             let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("opaque"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &t.hdr_view,
-                    resolve_target: None,
-                    depth_slice: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &t.depth_view,
-                    depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(1.0),
-                        store: wgpu::StoreOp::Store,
-                    }),
-                    stencil_ops: None,
-                }),
+                color_attachments: &[cleared_color(&t.hdr_view, wgpu::Color::BLACK)],
+                depth_stencil_attachment: cleared_depth(&t.depth_view),
                 ..Default::default()
             });
             pass.set_bind_group(0, &self.frame_group, &[]);
