@@ -7,7 +7,7 @@
 use std::path::{Path, PathBuf};
 
 use super::ink_draw::{InkView, LASER_TRAIL_SECS, LaserPoint};
-use super::slide_view::SlideResponse;
+use super::slide_state::SlideResponse;
 use crate::deck::InkFile;
 use crate::deck::ink::{CanvasFrame, Stroke, StrokeBuilder, Tool};
 use crate::diag::Diagnostic;

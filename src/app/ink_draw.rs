@@ -5,7 +5,7 @@
 
 use egui::{Color32, Painter, Pos2, Shape};
 
-use super::slide_view::SlideResponse;
+use super::slide_state::SlideResponse;
 use crate::deck::Theme;
 use crate::deck::ink::{CanvasFrame, Stroke, Tool};
 

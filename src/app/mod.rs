@@ -2,8 +2,11 @@
 //! window, `lectern export` and the snapshot tests share.
 
 mod actions;
+mod block_ctx;
+mod block_problems;
 mod blocks;
 mod files;
+mod formula_view;
 pub mod frame_stats;
 mod images;
 pub mod ink;
@@ -18,15 +21,16 @@ pub mod presenter;
 pub mod scene_mode;
 mod scene_panel;
 pub mod screens;
+pub mod slide_state;
 pub mod slide_view;
 pub mod theme;
 pub mod tweak_file;
 pub mod tweaks;
+mod widget_style;
 mod windows;
 
 pub use lectern_app::{LecternApp, Mode, Overlay};
 pub use offscreen::{OffscreenError, OffscreenRenderer, render_slide_png};
 pub use scene_mode::SceneMode;
-pub use slide_view::{
-    DeckState, SlideOptions, SlideResponse, SlideState, TweakSnapshot, slide_ui, slide_ui_with,
-};
+pub use slide_state::{DeckState, SlideResponse, SlideState, TweakSnapshot};
+pub use slide_view::{SlideOptions, slide_ui, slide_ui_with};

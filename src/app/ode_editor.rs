@@ -6,7 +6,7 @@
 
 use egui::{Color32, RichText};
 
-use super::slide_view::SlideState;
+use super::slide_state::SlideState;
 use crate::widgets::{ExprSlot, LiveOde};
 
 /// Error text on the presenter's dark panel.

@@ -10,7 +10,8 @@ use std::time::Duration;
 use egui_wgpu::{RenderState, ScreenDescriptor, WgpuSetup, wgpu};
 use image::RgbaImage;
 
-use super::slide_view::{SlideOptions, SlideState, slide_ui_with};
+use super::slide_state::SlideState;
+use super::slide_view::{SlideOptions, slide_ui_with};
 use crate::deck::Deck;
 
 /// How long a software rasteriser may take for one frame before we call the device lost.

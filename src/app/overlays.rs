@@ -5,7 +5,8 @@
 use egui::{Align2, Color32, CornerRadius, Rect, Sense, Stroke, vec2};
 
 use super::keys::HELP;
-use super::slide_view::{DeckState, SlideOptions, slide_ui_with};
+use super::slide_state::DeckState;
+use super::slide_view::{SlideOptions, slide_ui_with};
 use super::theme::{self, Palette};
 use crate::deck::Deck;
 use crate::diag::Diagnostic;

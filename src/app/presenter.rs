@@ -6,7 +6,8 @@ use egui::{Color32, Rect, RichText, UiBuilder, vec2};
 
 use super::ink_draw::InkView;
 use super::pacing::{PaceReport, clock};
-use super::slide_view::{DeckState, SlideOptions, SlideResponse, slide_ui_with};
+use super::slide_state::{DeckState, SlideResponse};
+use super::slide_view::{SlideOptions, slide_ui_with};
 use super::theme::{self, Palette};
 use crate::deck::{Deck, Theme};
 

@@ -2,288 +2,16 @@
 //! space a `Ui` offers. The window, the presenter view, the overview grid, `lectern export` and
 //! the snapshot tests all call [`slide_ui`], so what is tested is what the audience sees.
 
-use std::collections::HashMap;
-
 use egui::{Align, Color32, Rect, Sense, Stroke, UiBuilder, Vec2, vec2};
 
-use super::blocks::{self, BlockCtx};
+use super::block_ctx::BlockCtx;
+use super::blocks;
+use super::formula_view;
 use super::ink_draw::{InkView, paint_on_slide};
+use super::slide_state::{SlideResponse, SlideState};
 use super::theme::{self, Look, Palette, fit_canvas, size};
+use super::widget_style::widget_style;
 use crate::deck::{Deck, Layout, Slide};
-use crate::widgets::{ParamSnapshot, SlideWidget, WidgetSpec, params};
-
-/// The live state of one slide: its widgets, created from their specs the first time the slide
-/// is drawn and kept while presenting (so a dragged slider stays where the lecturer left it).
-#[derive(Default)]
-pub struct SlideState {
-    pub(crate) widgets: HashMap<Vec<usize>, WidgetSlot>,
-    /// Problems found while drawing (a formula that does not typeset), from the last frame:
-    /// for the presenter's screen, never the audience's.
-    problems: Vec<String>,
-    /// The deck file, remembered from the last draw: widgets made before the slide is drawn
-    /// (bookmarks, restores) resolve their files (problems, tableaux) against it too.
-    deck_path: Option<std::path::PathBuf>,
-}
-
-pub(crate) struct WidgetSlot {
-    pub spec: WidgetSpec,
-    pub widget: Box<dyn SlideWidget>,
-}
-
-impl SlideState {
-    /// The widget at block path `path` (indices into the body, then into columns), made from
-    /// `spec` if it is new or its spec in the file changed.
-    pub(crate) fn widget(
-        &mut self,
-        path: &[usize],
-        spec: &WidgetSpec,
-        deck_path: Option<&std::path::Path>,
-    ) -> &mut dyn SlideWidget {
-        let slot = self
-            .widgets
-            .entry(path.to_vec())
-            .and_modify(|slot| {
-                if slot.spec != *spec {
-                    let mut widget = spec.instantiate_in(deck_path);
-                    carry_tweaks(&slot.spec, slot.widget.as_mut(), widget.as_mut(), deck_path);
-                    *slot = WidgetSlot {
-                        spec: spec.clone(),
-                        widget,
-                    };
-                }
-            })
-            .or_insert_with(|| WidgetSlot {
-                spec: spec.clone(),
-                widget: spec.instantiate_in(deck_path),
-            });
-        slot.widget.as_mut()
-    }
-
-    /// After problem files changed on disk: widgets whose equation comes from one of `changed`
-    /// are made again (their tweaks carried over; a broken file keeps the last good equation).
-    pub fn reload_problem_files(&mut self, changed: &[std::path::PathBuf]) {
-        let deck_path = self.deck_path.clone();
-        for slot in self.widgets.values_mut() {
-            let uses = slot
-                .widget
-                .ode()
-                .and_then(|o| o.file().map(std::path::Path::to_path_buf))
-                .is_some_and(|f| changed.iter().any(|c| same_file(c, &f)));
-            if uses {
-                let mut widget = slot.spec.instantiate_in(deck_path.as_deref());
-                carry_tweaks(
-                    &slot.spec,
-                    slot.widget.as_mut(),
-                    widget.as_mut(),
-                    deck_path.as_deref(),
-                );
-                slot.widget = widget;
-            }
-        }
-    }
-
-    /// The live equations of the slide's widgets, by block path (the presenter's editor).
-    pub fn odes(&mut self) -> Vec<(Vec<usize>, &'static str, &mut crate::widgets::LiveOde)> {
-        let mut slots: Vec<(&Vec<usize>, &mut WidgetSlot)> = self.widgets.iter_mut().collect();
-        slots.sort_by(|a, b| a.0.cmp(b.0));
-        slots
-            .into_iter()
-            .filter_map(|(path, slot)| {
-                let kind = slot.spec.kind();
-                slot.widget.ode().map(|o| (path.clone(), kind, o))
-            })
-            .collect()
-    }
-
-    /// The widget at block path `path`, if it was made.
-    pub fn widget_at(&mut self, path: &[usize]) -> Option<&mut dyn SlideWidget> {
-        Some(self.widgets.get_mut(path)?.widget.as_mut())
-    }
-
-    pub(crate) fn note_problem(&mut self, problem: String) {
-        if !self.problems.contains(&problem) {
-            self.problems.push(problem);
-        }
-    }
-
-    /// Problems found while drawing the slide the last time (e.g. a formula with an error).
-    pub fn problems(&self) -> &[String] {
-        &self.problems
-    }
-
-    /// The deck file whose folder the widgets' files are in (for widgets made before the
-    /// slide is first drawn).
-    pub fn set_deck_path(&mut self, deck: Option<&std::path::Path>) {
-        self.deck_path = deck.map(std::path::Path::to_path_buf);
-    }
-
-    /// Makes every widget of `slide` (so tweaks can be set before it is first drawn).
-    pub fn ensure_widgets(&mut self, slide: &Slide) {
-        let deck = self.deck_path.clone();
-        for (path, spec) in slide.widgets() {
-            self.widget(&path, spec, deck.as_deref());
-        }
-    }
-
-    /// Every live value, by widget path and parameter id (a bookmark).
-    pub fn tweak_snapshot(&mut self) -> TweakSnapshot {
-        let mut out: TweakSnapshot = self
-            .widgets
-            .iter_mut()
-            .map(|(path, slot)| (path.clone(), params::snapshot(slot.widget.as_mut())))
-            .collect();
-        out.sort_by(|a, b| a.0.cmp(&b.0));
-        out
-    }
-
-    /// Sets the values of a [`Self::tweak_snapshot`] (unknown widgets or ids are skipped).
-    pub fn restore(&mut self, slide: &Slide, snapshot: &TweakSnapshot) {
-        self.ensure_widgets(slide);
-        for (path, values) in snapshot {
-            if let Some(slot) = self.widgets.get_mut(path) {
-                params::restore(slot.widget.as_mut(), values);
-            }
-        }
-    }
-
-    /// Sets one value by widget path and parameter id; false if there is no such parameter.
-    pub fn set_param(&mut self, path: &[usize], id: &str, value: ParamSnapshot) -> bool {
-        let Some(slot) = self.widgets.get_mut(path) else {
-            return false;
-        };
-        slot.widget
-            .params()
-            .into_iter()
-            .find(|p| p.id == id)
-            .is_some_and(|mut p| p.set(value).is_ok())
-    }
-
-    /// One value by widget path and parameter id.
-    pub fn param(&mut self, path: &[usize], id: &str) -> Option<ParamSnapshot> {
-        let slot = self.widgets.get_mut(path)?;
-        slot.widget
-            .params()
-            .iter()
-            .find(|p| p.id == id)
-            .map(|p| p.get())
-    }
-
-    /// `R`: every widget back to the file's values.
-    pub fn reset(&mut self) {
-        for slot in self.widgets.values_mut() {
-            slot.widget.reset();
-        }
-    }
-
-    /// Where write-back writes parameter `id` of the widget at `path`.
-    pub fn write_target(&mut self, path: &[usize], id: &str) -> Option<crate::widgets::WriteTo> {
-        let slot = self.widgets.get_mut(path)?;
-        slot.widget
-            .params()
-            .into_iter()
-            .find(|p| p.id == id)
-            .map(|p| p.write)
-    }
-
-    /// The values that differ from the file's, by widget path: what write-back writes.
-    pub fn tweaked(&mut self) -> Vec<(Vec<usize>, String, ParamSnapshot)> {
-        let mut out = Vec::new();
-        let deck = self.deck_path.clone();
-        for (path, slot) in &mut self.widgets {
-            let file: Vec<(String, ParamSnapshot)> =
-                params::snapshot(slot.spec.instantiate_in(deck.as_deref()).as_mut());
-            for (id, v) in params::snapshot(slot.widget.as_mut()) {
-                if file.iter().any(|(fid, fv)| *fid == id && *fv != v) {
-                    out.push((path.clone(), id, v));
-                }
-            }
-        }
-        out.sort_by(|a, b| (&a.0, &a.1).cmp(&(&b.0, &b.1)));
-        out
-    }
-
-    /// The live controls of every widget on the slide (the presenter's panel).
-    pub fn controls_ui(&mut self, ui: &mut egui::Ui) {
-        let mut paths: Vec<Vec<usize>> = self.widgets.keys().cloned().collect();
-        paths.sort();
-        for path in paths {
-            let Some(slot) = self.widgets.get_mut(&path) else {
-                continue;
-            };
-            ui.label(egui::RichText::new(slot.spec.kind()).strong());
-            ui.push_id(&path, |ui| {
-                for mut p in slot.widget.params() {
-                    p.ui(ui);
-                }
-            });
-            ui.add_space(6.0);
-        }
-    }
-
-    /// How many widgets are alive (for tests of the keep-alive rule).
-    pub fn widget_count(&self) -> usize {
-        self.widgets.len()
-    }
-}
-
-/// A slide's live values: per widget path, (parameter id, value).
-pub type TweakSnapshot = Vec<(Vec<usize>, Vec<(String, ParamSnapshot)>)>;
-
-/// After a reload changed a widget's spec: the new widget takes the live values the lecturer
-/// tweaked, except where the file changed that very value (then the file wins). Its equation
-/// keeps what was typed live the same way, and the last good equation if the new one is broken.
-fn carry_tweaks(
-    old_spec: &WidgetSpec,
-    live: &mut dyn SlideWidget,
-    new: &mut dyn SlideWidget,
-    deck_path: Option<&std::path::Path>,
-) {
-    if let (Some(old), Some(fresh)) = (live.ode(), new.ode()) {
-        fresh.carry_from(old);
-    }
-    let old_file = params::snapshot(old_spec.instantiate_in(deck_path).as_mut());
-    let new_file = params::snapshot(new);
-    let keep: Vec<(String, ParamSnapshot)> = params::snapshot(live)
-        .into_iter()
-        .filter(|(id, v)| {
-            let was = old_file.iter().find(|(i, _)| i == id).map(|(_, v)| *v);
-            let now = new_file.iter().find(|(i, _)| i == id).map(|(_, v)| *v);
-            was != Some(*v) && was == now
-        })
-        .collect();
-    params::restore(new, &keep);
-}
-
-/// The states of every slide of a deck, by slide key (id, else title), so they survive moving
-/// between slides and reloads that insert slides.
-#[derive(Default)]
-pub struct DeckState {
-    slides: HashMap<String, SlideState>,
-}
-
-impl DeckState {
-    pub fn slide(&mut self, slide: &Slide) -> &mut SlideState {
-        self.slides.entry(slide.key().to_owned()).or_default()
-    }
-
-    /// The state of `slide` if it was ever drawn or tweaked.
-    pub fn existing(&mut self, slide: &Slide) -> Option<&mut SlideState> {
-        self.slides.get_mut(slide.key())
-    }
-
-    /// Problem files changed on disk: the widgets that read them re-read them.
-    pub fn reload_problem_files(&mut self, changed: &[std::path::PathBuf]) {
-        for state in self.slides.values_mut() {
-            state.reload_problem_files(changed);
-        }
-    }
-
-    /// After a reload: forget the states of slides that no longer exist. Widgets whose spec
-    /// changed are recreated lazily by [`SlideState::widget`].
-    pub fn retain_deck(&mut self, deck: &Deck) {
-        self.slides.retain(|key, _| deck.find(key).is_some());
-    }
-}
 
 /// How a slide is drawn besides its content.
 #[derive(Debug, Clone, Copy)]
@@ -314,18 +42,6 @@ impl Default for SlideOptions<'_> {
             drawing: false,
         }
     }
-}
-
-/// What drawing a slide gave back.
-pub struct SlideResponse {
-    /// Where the canvas landed, in points.
-    pub canvas: Rect,
-    /// Points per canvas unit.
-    pub scale: f32,
-    /// The slide's background: `clicked()` is a click that hit no widget.
-    pub background: egui::Response,
-    /// While drawing: the whole canvas, on top of its widgets, sensing clicks and drags.
-    pub ink: Option<egui::Response>,
 }
 
 /// Draws slide `index` of `deck` into all the space `ui` has left, with default options.
@@ -396,10 +112,9 @@ pub fn slide_ui_with(
             .max_rect(inner)
             .layout(egui::Layout::top_down(Align::Min)),
     );
-    content.set_style(blocks::widget_style(ui.style(), &look, deck.theme));
+    content.set_style(widget_style(ui.style(), &look, deck.theme));
     content.set_clip_rect(canvas.intersect(ui.clip_rect()));
-    state.problems.clear();
-    state.deck_path.clone_from(&deck.file);
+    state.begin_frame(deck.file.as_deref());
     let bctx = BlockCtx {
         look,
         slide_key: slide.key(),
@@ -415,7 +130,7 @@ pub fn slide_ui_with(
         footer_ui(ui, deck, index, canvas, &look);
     }
     // Typeset the neighbours' formulas in the background, so paging finds them ready.
-    blocks::prefetch_formulas(ui.ctx(), deck, index.saturating_sub(1)..index + 3, &look);
+    formula_view::prefetch_formulas(ui.ctx(), deck, index.saturating_sub(1)..index + 3, &look);
     // Registered after the content, so it is on top: while drawing it takes the pointer.
     let ink = options.drawing.then(|| {
         ui.interact(
@@ -542,14 +257,4 @@ pub fn fitted_size(avail: Vec2, ratio: f32) -> Vec2 {
     fit_canvas(Rect::from_min_size(egui::Pos2::ZERO, avail), ratio)
         .0
         .size()
-}
-
-/// Whether two paths name the same file (the watcher reports absolute paths, the deck relative
-/// ones).
-fn same_file(a: &std::path::Path, b: &std::path::Path) -> bool {
-    a == b
-        || match (a.canonicalize(), b.canonicalize()) {
-            (Ok(x), Ok(y)) => x == y,
-            _ => false,
-        }
 }

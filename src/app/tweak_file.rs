@@ -8,7 +8,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use super::slide_view::{DeckState, SlideState};
+use super::slide_state::{DeckState, SlideState};
 use super::tweaks::widget_paths;
 use crate::deck::{Deck, Slide};
 use crate::diag::Diagnostic;

@@ -3,7 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
-use super::slide_view::{SlideState, TweakSnapshot};
+use super::slide_state::{SlideState, TweakSnapshot};
 use crate::deck::write_back::{NewValue, ValueEdit, apply_at, apply_edits, write_atomic};
 use crate::deck::{BookmarkDecl, Slide};
 use crate::widgets::{ParamSnapshot, WriteTo};

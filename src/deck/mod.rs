@@ -5,6 +5,7 @@ pub mod files;
 pub mod ink;
 mod ink_file;
 mod load;
+pub mod markup;
 mod model;
 pub mod nav;
 mod session;
