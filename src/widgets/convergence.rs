@@ -171,7 +171,9 @@ impl Convergence {
         let stages: Vec<usize> = self
             .methods
             .shown()
-            .map(|m| m.method.tableau.b.len().max(1))
+            // f-evaluations per step: the stages of a tableau; an implicit method's Newton
+            // iterations are counted as four
+            .map(|m| m.method.tableau.as_ref().map_or(4, |t| t.b.len().max(1)))
             .collect();
         let n = stages.len().max(1);
         let total = levels(&self.spec) * n;

@@ -51,10 +51,10 @@ impl MethodSet {
         for r in refs {
             match r.resolve(deck_path) {
                 Ok(method) => {
-                    let color = match method.builtin() {
-                        Some(_) => style::method_color(&method.key),
-                        None if is_rk4_typo(&method.tableau) => style::RK4_TYPO,
-                        None => {
+                    let color = match (method.builtin(), &method.tableau) {
+                        (Some(m), _) => style::method_color(m),
+                        (None, Some(t)) if is_rk4_typo(t) => style::RK4_TYPO,
+                        (None, _) => {
                             extra += 1;
                             style::EXTRA_COLORS[(extra - 1) % style::EXTRA_COLORS.len()]
                         }

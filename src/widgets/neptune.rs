@@ -154,7 +154,13 @@ impl SlideWidget for Neptune {
             ui.horizontal(|ui| {
                 ui.label("stable for h <");
                 for m in self.methods.shown() {
-                    let lim = stable_h_limit(&m.method.tableau, lambda, 10.0);
+                    // a method without R(z) (a symplectic splitting) reads as never stable here
+                    let abs_r = |z: C| {
+                        m.method
+                            .stability((z.0, z.1))
+                            .map_or(f64::INFINITY, |r| r.0.hypot(r.1))
+                    };
+                    let lim = stable_h_limit(abs_r, lambda, 10.0);
                     let txt = if lim == 0.0 {
                         format!("{}: never", m.method.name)
                     } else {

@@ -29,8 +29,8 @@ pub fn stability_abs(t: &Tableau, z: C) -> f64 {
 
 /// The largest h with |R(h λ)| ≤ 1 for all smaller h (bisection after a coarse scan);
 /// 0 when no positive h is stable, ∞ (capped at `h_max`) when all are.
-pub fn stable_h_limit(t: &Tableau, lambda: C, h_max: f64) -> f64 {
-    let stable = |h: f64| stability_abs(t, lambda.scale(h)) <= 1.0 + 1e-12;
+pub fn stable_h_limit(abs_r: impl Fn(C) -> f64, lambda: C, h_max: f64) -> f64 {
+    let stable = |h: f64| abs_r(lambda.scale(h)) <= 1.0 + 1e-12;
     let n = 4000;
     let mut last_ok = 0.0;
     for i in 1..=n {
@@ -90,7 +90,8 @@ impl Stability {
             .methods
             .entries
             .iter()
-            .map(|e| (e.method.name.clone(), e.color, e.method.tableau.clone()))
+            // methods without a tableau (implicit built-ins) get no region here yet
+            .filter_map(|e| Some((e.method.name.clone(), e.color, e.method.tableau.clone()?)))
             .collect();
         let mut i = v
             .iter()
@@ -234,7 +235,7 @@ impl SlideWidget for Stability {
                     li.abs()
                 ));
                 for (name, color, t) in &entries {
-                    let lim = stable_h_limit(t, C(lr, li), 10.0);
+                    let lim = stable_h_limit(|z| stability_abs(t, z), C(lr, li), 10.0);
                     ui.colored_label(
                         style::text_color(ui, *color),
                         format!("{name}: {}", style::fmt_num(lim)),
@@ -331,11 +332,12 @@ mod tests {
     use super::*;
     use crate::deck::widgets::MethodRef;
     use crate::deck::widgets::stability::default_view;
+    use crate::ode::Method;
 
     #[test]
     fn known_stability_limits() {
         // real axis: Euler and midpoint 2, RK4 ≈ 2.785; imaginary axis: RK4 2√2, Euler 0
-        let lim = |t: Tableau, l: C| stable_h_limit(&t, l, 10.0);
+        let lim = |t: Tableau, l: C| stable_h_limit(|z| stability_abs(&t, z), l, 10.0);
         assert!((lim(Tableau::euler(), C(-1.0, 0.0)) - 2.0).abs() < 1e-9);
         assert!((lim(Tableau::midpoint(), C(-1.0, 0.0)) - 2.0).abs() < 1e-9);
         assert!((lim(Tableau::rk4(), C(-1.0, 0.0)) - 2.785_293_563).abs() < 1e-6);
@@ -348,7 +350,7 @@ mod tests {
         let deck = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("slides/lecture.ron");
         let spec = StabilitySpec {
             methods: vec![
-                MethodRef::Rk4,
+                MethodRef::Builtin(Method::Rk4),
                 MethodRef::Tableau("tableaux/rk4-typo.ron".into()),
                 MethodRef::Tableau("tableaux/nope.ron".into()),
             ],
@@ -364,7 +366,7 @@ mod tests {
         let typo = &entries[1].2;
         assert_eq!(typo, &Tableau::rk4_typo());
         assert_eq!(entries[1].1, style::RK4_TYPO, "the typo keeps its colour");
-        let lim = |t: &Tableau| stable_h_limit(t, C(-1.0, 0.0), 10.0);
+        let lim = |t: &Tableau| stable_h_limit(|z| stability_abs(t, z), C(-1.0, 0.0), 10.0);
         assert!((lim(typo) - lim(&Tableau::rk4())).abs() > 0.05);
         let err = &w.methods.errors[0];
         assert!(err.contains("nope.ron"), "{err}");
@@ -393,7 +395,7 @@ mod tests {
     #[test]
     fn regions_are_translucent_method_colours() {
         let spec = StabilitySpec {
-            methods: vec![MethodRef::Euler],
+            methods: vec![MethodRef::Builtin(Method::Euler)],
             tableaux: vec![],
             view: default_view(),
             lambda: None,

@@ -24,9 +24,9 @@ pub enum Construction {
 
 impl Construction {
     pub fn of(m: &MethodRef) -> Self {
-        match m {
-            MethodRef::Euler => Construction::Euler,
-            MethodRef::Midpoint => Construction::Midpoint,
+        match m.builtin() {
+            Some(Method::Euler) => Construction::Euler,
+            Some(Method::Midpoint) => Construction::Midpoint,
             _ => Construction::Rk4,
         }
     }
@@ -40,27 +40,11 @@ impl Construction {
     }
 
     fn reference(self) -> MethodRef {
-        match self {
-            Construction::Euler => MethodRef::Euler,
-            Construction::Midpoint => MethodRef::Midpoint,
-            Construction::Rk4 => MethodRef::Rk4,
-        }
-    }
-
-    fn key(self) -> &'static str {
-        match self {
-            Construction::Euler => "euler",
-            Construction::Midpoint => "midpoint",
-            Construction::Rk4 => "rk4",
-        }
+        MethodRef::Builtin(self.method())
     }
 
     fn name(self) -> &'static str {
-        match self {
-            Construction::Euler => "Euler",
-            Construction::Midpoint => "Midpoint",
-            Construction::Rk4 => "RK4",
-        }
+        self.method().label()
     }
 }
 
@@ -227,7 +211,7 @@ impl SlideWidget for StepConstruction {
                 let colour = if m == c {
                     ui.visuals().strong_text_color()
                 } else {
-                    style::text_color(ui, style::method_color(c.key()))
+                    style::text_color(ui, style::method_color(c.method()))
                 };
                 let text = egui::RichText::new(c.name()).color(colour).strong();
                 if ui.selectable_label(m == c, text).clicked() {
@@ -253,7 +237,7 @@ impl SlideWidget for StepConstruction {
         let h = self.spec.h;
         let (arrows, end) = construct(&p, m, t0, x0, h);
         let stage = self.spec.stage;
-        let color = style::method_color(m.key());
+        let color = style::method_color(m.method());
         let exact: Vec<[f64; 2]> = if p.has_exact() {
             (0..=200)
                 .filter_map(|i| {
@@ -383,7 +367,7 @@ impl SlideWidget for StepConstruction {
         );
         Some(PlotData {
             vars: p.vars.clone(),
-            series: vec![(m.key().to_string(), path)],
+            series: vec![(m.method().name().to_string(), path)],
         })
     }
 }

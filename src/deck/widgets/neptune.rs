@@ -28,5 +28,5 @@ pub fn default_t_end() -> f64 {
 }
 
 pub fn default_methods() -> Vec<MethodRef> {
-    vec![MethodRef::Euler]
+    vec![MethodRef::Builtin(crate::ode::Method::Euler)]
 }

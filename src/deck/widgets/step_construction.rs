@@ -29,5 +29,5 @@ pub fn default_h() -> f64 {
 }
 
 pub fn default_method() -> MethodRef {
-    MethodRef::Rk4
+    MethodRef::Builtin(crate::ode::Method::Rk4)
 }
