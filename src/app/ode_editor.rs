@@ -95,19 +95,27 @@ pub fn equation_ui(ui: &mut egui::Ui, kind: &str, ode: &mut LiveOde) {
                 .id(id)
                 .font(mono.clone())
                 .char_limit(crate::ode::problem::MAX_EXPR_CHARS)
+                // the field keeps Esc (egui would drop the focus before the field saw it):
+                // here Esc means "revert", then the field lets go
+                .event_filter(egui::EventFilter {
+                    horizontal_arrows: true,
+                    vertical_arrows: true,
+                    escape: true,
+                    ..Default::default()
+                })
                 .desired_width(ui.available_width());
             // named by its label, for screen readers (and the UI tests' queries)
             let field = ui.add(edit).labelled_by(name.id);
             if field.changed() {
                 ode.set_draft(slot, &text);
             }
-            // a single-line field gives up the keyboard on Enter and on Esc
-            if field.lost_focus() {
-                if ui.input(|i| i.key_pressed(egui::Key::Enter)) {
-                    ode.commit();
-                } else if ui.input(|i| i.key_pressed(egui::Key::Escape)) {
-                    ode.revert();
-                }
+            // a single-line field gives up the keyboard on Enter
+            if field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter)) {
+                ode.commit();
+            }
+            if field.has_focus() && ui.input(|i| i.key_pressed(egui::Key::Escape)) {
+                ode.revert();
+                field.surrender_focus();
             }
         });
         // the error of the text as it is now (set_expr may just have changed it)
