@@ -15,4 +15,7 @@ pub(crate) struct BlockCtx<'a> {
     /// slide's index in it, to place a formula's error at its line.
     pub deck_file: Option<&'a Path>,
     pub slide_index: usize,
+    /// The faults the deck's widgets had when it loaded, at their line and column: a widget's
+    /// problem is reported with its place, as `lectern check` reports it.
+    pub widget_problems: &'a [crate::deck::WidgetProblem],
 }

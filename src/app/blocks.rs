@@ -155,8 +155,18 @@ fn block_ui(
             child.set_clip_rect(rect.intersect(ui.clip_rect()));
             let widget = state.widget(path, spec, bctx.deck_file);
             widget.ui(&mut child);
-            for problem in widget.problems() {
-                state.note_problem(format!("{} widget {path:?}: {problem}", spec.kind()));
+            let problems = widget.problems();
+            // the load-time faults (equations, tableau files) at the deck's line and column
+            let placed: Vec<String> = (bctx.widget_problems.iter())
+                .filter(|p| p.slide == bctx.slide_index && p.block == path)
+                .map(|p| p.diagnostic.to_string())
+                .collect();
+            if !problems.is_empty() && !placed.is_empty() {
+                placed.into_iter().for_each(|p| state.note_problem(p));
+            } else {
+                for problem in problems {
+                    state.note_problem(format!("{} widget {path:?}: {problem}", spec.kind()));
+                }
             }
         }
         Block::Columns(cols) => {

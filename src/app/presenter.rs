@@ -72,7 +72,11 @@ pub fn presenter_ui(
 
     // Left: the current slide as the audience sees it, then its controls.
     let ratio = deck.aspect.ratio();
-    let now_h = (left.width() / ratio).min(left.height() * 0.68);
+    // A slide with live widgets leaves half the height to its controls (sliders and equation
+    // fields), so at 1280×720 they are in view without scrolling; one without takes more.
+    let has_controls = (deck.slides.get(index)).is_some_and(|s| !s.widgets().is_empty());
+    let now_share = if has_controls { 0.5 } else { 0.68 };
+    let now_h = (left.width() / ratio).min(left.height() * now_share);
     let now_rect =
         Rect::from_min_size(left.min + vec2(0.0, text * 1.5), vec2(now_h * ratio, now_h));
     if let Some(scene_controls) = scene {
@@ -127,7 +131,11 @@ pub fn presenter_ui(
             );
             child.style_mut().visuals = egui::Visuals::dark();
             child.style_mut().override_font_id = Some(egui::FontId::proportional(text * 0.8));
-            egui::ScrollArea::vertical().show(&mut child, |ui| {
+            // what does not fit still scrolls, with the bar always shown so it is seen
+            egui::ScrollArea::vertical()
+                .auto_shrink([false, false])
+                .scroll_bar_visibility(egui::scroll_area::ScrollBarVisibility::AlwaysVisible)
+                .show(&mut child, |ui| {
                 ui.label(
                     RichText::new("Live controls (R resets, Ctrl+S writes back)")
                         .color(palette.dim),

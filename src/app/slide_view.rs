@@ -121,6 +121,7 @@ pub fn slide_ui_with(
         base_dir: deck.base_dir.as_deref(),
         deck_file: deck.file.as_deref(),
         slide_index: index,
+        widget_problems: &deck.widget_problems,
     };
     match slide.layout {
         Layout::Content => content_slide_ui(&mut content, slide, &bctx, state),
