@@ -267,3 +267,37 @@ fn one_unparsable_slide_leaves_the_others_presenting_and_exporting() {
     h.run_steps(2);
     assert_eq!(h.state().nav().index(), 5, "paging goes on past the error slide");
 }
+
+#[test]
+fn the_presenter_overlay_shows_every_control_of_the_live_slide_at_720_px() {
+    use egui_kittest::kittest::Queryable;
+    let (_tmp, project) = new_project();
+    let deck = project.join("slides/talk.ron");
+    let app = LecternApp::new(DeckSession::open(&deck).unwrap());
+    let mut h = Harness::builder()
+        .with_size([1280.0, 720.0])
+        .wgpu()
+        .build_ui_state(|ui, app: &mut LecternApp| app.frame_ui(ui), app);
+    h.run_steps(2);
+    // the oscillator: h, two method switches, exact, then ζ and ω
+    for _ in 0..2 {
+        h.key_press(egui::Key::ArrowRight);
+        h.run_steps(2);
+    }
+    h.key_press(egui::Key::P);
+    h.run_steps(4);
+    for name in ["zeta", "omega"] {
+        let rects: Vec<egui::Rect> = h.query_all_by_label(name).map(|n| n.rect()).collect();
+        assert!(!rects.is_empty(), "no {name} slider");
+        for r in rects {
+            assert!(r.bottom() <= 720.0 && r.top() >= 0.0, "{name} at {r:?}: below the window");
+        }
+    }
+    // the equation's fields too
+    let fields: Vec<egui::Rect> = h
+        .query_all_by_role(egui::accesskit::Role::TextInput)
+        .map(|n| n.rect())
+        .collect();
+    assert_eq!(fields.len(), 2, "{fields:?}");
+    assert!(fields.iter().all(|r| r.bottom() <= 720.0), "{fields:?}");
+}
