@@ -27,6 +27,9 @@ pub const VERN7: Color32 = Color32::from_rgb(105, 125, 190);
 pub const VERN8: Color32 = Color32::from_rgb(185, 95, 200);
 pub const VERN9: Color32 = Color32::from_rgb(130, 95, 235);
 pub const DOP853: Color32 = Color32::from_rgb(215, 55, 140);
+/// The stiff solvers: an olive green (Rodas5P) and a rose (RADAU5), apart from the pairs'.
+pub const RODAS5P: Color32 = Color32::from_rgb(95, 140, 40);
+pub const RADAU5: Color32 = Color32::from_rgb(180, 70, 90);
 /// Symplectic Euler (rigid body only): a violet, distinct from the palette's method colours
 /// and readable on light and dark slides.
 pub const SYMPLECTIC_EULER: Color32 = Color32::from_rgb(150, 110, 220);
@@ -55,6 +58,8 @@ pub fn method_color(m: crate::ode::Method) -> Color32 {
         Method::Vern8 => VERN8,
         Method::Vern9 => VERN9,
         Method::Dop853 => DOP853,
+        Method::Rodas5p => RODAS5P,
+        Method::Radau5 => RADAU5,
     }
 }
 
@@ -352,7 +357,7 @@ mod tests {
             Color32::from_rgb(0xfb, 0xf9, 0xf4),
             Color32::WHITE,
         ];
-        let pairs = [DOPRI5, TSIT5, VERN6, VERN7, VERN8, VERN9, DOP853];
+        let pairs = [DOPRI5, TSIT5, VERN6, VERN7, VERN8, VERN9, DOP853, RODAS5P, RADAU5];
         for c in pairs {
             for bg in backgrounds {
                 assert!(
@@ -364,7 +369,7 @@ mod tests {
         }
         let all = [
             EULER, MIDPOINT, RK4, HEUN, RK4_TYPO, DOPRI, DOPRI5, TSIT5, VERN6, VERN7, VERN8, VERN9,
-            DOP853,
+            DOP853, RODAS5P, RADAU5,
         ];
         for (i, a) in all.iter().enumerate() {
             for b in &all[i + 1..] {
