@@ -140,7 +140,7 @@ impl Path {
             f_evals: sol.f_evals as usize,
             diverged_at: match sol.outcome {
                 Outcome::Finished => None,
-                Outcome::Diverged { t } | Outcome::Failed { t, .. } => Some(t),
+                Outcome::Diverged { t } | Outcome::Failed { t, .. } | Outcome::Stiff { t } => Some(t),
             },
             ..Default::default()
         };
