@@ -1,6 +1,7 @@
 //! Decks: the slide model as written in `slides/*.ron`, loading with file positions, and
 //! navigation state.
 
+pub mod broken;
 pub mod files;
 pub mod ink;
 mod ink_file;

@@ -8,6 +8,7 @@ use serde::{Deserialize, Serialize};
 use super::widgets::WidgetSpec;
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Deck {
     pub title: String,
     /// Width : height of the logical canvas; slides are laid out on it and scaled to the window.
@@ -32,6 +33,10 @@ pub struct Deck {
     /// the talk: that widget shows its error (or its last good equation), the rest works.
     #[serde(skip)]
     pub widget_problems: Vec<WidgetProblem>,
+    /// Slides that did not parse, shown as error slides in their place (the rest of the deck
+    /// loads). `lectern check` fails on them; `lectern export` too, unless `--keep-going`.
+    #[serde(skip)]
+    pub broken_slides: Vec<super::broken::BrokenSlide>,
 }
 
 /// A problem of one widget: slide index, block path (indices into the body, then into
@@ -72,6 +77,7 @@ pub enum Theme {
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Slide {
     /// Stable identity across edits: keeps the presenter's place and tweaks when slides move.
     #[serde(default)]
@@ -163,6 +169,7 @@ pub const IMAGE_WIDTH_RANGE: std::ops::RangeInclusive<f32> = 0.05..=1.0;
 
 /// One piece of slide content, laid out top to bottom.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum Block {
     /// A paragraph.
     Text(String),
@@ -189,6 +196,7 @@ pub enum Block {
 /// A bookmark written in the deck: key `1`…`9` jumps to `slide` and sets its widgets'
 /// parameters, e.g. `(key: 1, slide: "neptune", label: "h = 0.5 blows up", set: [("h", 0.5)])`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct BookmarkDecl {
     pub key: u8,
     pub slide: String,

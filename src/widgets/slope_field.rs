@@ -133,13 +133,20 @@ impl SlopeField {
         let extent = (vx1 - vx0).abs().max((vy1 - vy0).abs()).max(1.0);
         let bound = 1e3 * extent;
         let n = steps_for(t0, s.t_end, h, MAX_STEPS);
-        let reference = reference_path(&p, t0, &x0, s.t_end.max(t0 + 1e-9));
+        // `exact: false`: no reference solve and no global error (against a coarse reference
+        // it would be a number that means nothing)
+        let reference = if s.exact {
+            reference_path(&p, t0, &x0, s.t_end.max(t0 + 1e-9))
+        } else {
+            Path::default()
+        };
+        let with_error = s.exact;
         let paths = self
             .methods
             .shown()
             .map(|m| {
                 let path = fixed_path(&p, m.method.scheme(), t0, &x0, h, n, bound);
-                let error = if path.diverged_at.is_some() {
+                let error = if path.diverged_at.is_some() || !with_error {
                     None
                 } else {
                     let t_last = *path.ts.last().unwrap_or(&t0);
@@ -361,11 +368,15 @@ impl SlideWidget for SlopeField {
         // Errors line first, so the plot can take the rest of the height.
         ui.horizontal(|ui| {
             ui.label(egui::RichText::new(label).strong());
-            ui.label("  global error at the end:");
+            if self.spec.exact {
+                ui.label("  global error at the end:");
+            }
             for p in &c.paths {
                 let txt = match (p.error, p.diverged_at) {
                     (_, Some(t)) => format!("{} diverged at t = {}", p.name, fmt_num(t)),
                     (Some(e), None) => format!("{} {}", p.name, fmt_num(e)),
+                    // no reference asked for: nothing to say but that it did not diverge
+                    (None, None) if !self.spec.exact => continue,
                     (None, None) => format!("{} –", p.name),
                 };
                 ui.colored_label(
@@ -484,7 +495,9 @@ impl SlideWidget for SlopeField {
         let (t0, x0) = self.start_state(&p);
         let (paths, reference) = self.compute();
         let mut series: Vec<(String, Path)> = paths.into_iter().map(|m| (m.key, m.path)).collect();
-        series.push(exact_series(&p, t0, &x0, reference));
+        if self.spec.exact {
+            series.push(exact_series(&p, t0, &x0, reference));
+        }
         Some(PlotData {
             vars: p.vars.clone(),
             series,
