@@ -32,7 +32,10 @@ pub(crate) fn blocks_ui(
         .filter_map(|(i, b)| measure(ui, b, &[path, &[i]].concat(), width, bctx))
         .sum();
     let flexible = blocks.iter().filter(|b| is_flexible(b)).count();
-    let gaps = gap * blocks.len().saturating_sub(1) as f32;
+    // each block also gets egui's item spacing after the space before it: count it, or the
+    // last widget's slot reaches under the footer
+    let gaps = gap * blocks.len().saturating_sub(1) as f32
+        + ui.spacing().item_spacing.y * blocks.len() as f32;
     let flex_h = if flexible > 0 {
         ((ui.available_height() - fixed - gaps) / flexible as f32).max(look.scaled(240.0))
     } else {
@@ -155,6 +158,15 @@ fn block_ui(
             child.set_clip_rect(rect.intersect(ui.clip_rect()));
             let widget = state.widget(path, spec, bctx.deck_file);
             widget.ui(&mut child);
+            super::slide_state::record_drawn_widget(
+                ui.ctx(),
+                bctx.slide_index,
+                path,
+                spec.kind(),
+                rect,
+                child.min_rect(),
+                bctx.content,
+            );
             for problem in widget.problems() {
                 state.note_problem(format!("{} widget {path:?}: {problem}", spec.kind()));
             }
