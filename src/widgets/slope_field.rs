@@ -400,7 +400,7 @@ impl SlideWidget for SlopeField {
                     PlotPoints::from(origins.clone()),
                     PlotPoints::from(tips.clone()),
                 )
-                .color(style::FIELD)
+                .color(style::thin(style::FIELD, u))
                 .tip_length(if is_phase { 5.0 * u } else { 0.0 })
                 .allow_hover(false),
             );

@@ -100,8 +100,18 @@ pub fn plot<'a>(ui: &egui::Ui, id: impl egui::AsIdSalt, x_name: &str) -> egui_pl
         .show_y(false)
         .show_crosshair(false)
         .grid_spacing(egui::Rangef::new(8.0 * u, 300.0 * u))
+        // egui_plot draws grid lines one point wide: below one point per slide unit, fade them
+        // as a thinner line would cover less (a thumbnail's grid as light as the slide's)
+        .grid_color(thin(ui.visuals().text_color(), u))
         .custom_x_axes(vec![x_axis])
         .custom_y_axes(vec![y_axis])
+}
+
+/// `color` for a line egui_plot draws one point wide whatever we ask (grid lines, slope
+/// marks), faded where one slide unit is less than a point so it covers what it would at
+/// full size.
+pub fn thin(color: Color32, unit: f32) -> Color32 {
+    color.gamma_multiply(unit.clamp(0.0, 1.0))
 }
 
 /// How far (in data units, x and y) to widen a plot's view of size `span` so a key marker on
