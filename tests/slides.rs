@@ -402,3 +402,41 @@ fn thumbnails_are_the_slide_scaled_down() {
 /// bundled deck, see docs/slides.md.
 const MEAN_MAX: f64 = 8.5;
 const FAR_MAX: f64 = 0.025;
+
+/// `controls: Presenter`: the slide (projector, export) shows the plot and its values, not the
+/// sliders and checkboxes; the default deck shows them; `force_controls` (the `C` key) brings
+/// them back.
+#[test]
+fn controls_presenter_shows_values_not_sliders() {
+    use egui::accesskit::Role;
+    use egui_kittest::kittest::Queryable;
+    use lectern::app::{SlideOptions, slide_ui_with};
+    let slope_field = 3; // slide 4: h slider, three method checkboxes, "exact"
+    let run = |controls: lectern::deck::Controls, force: bool| {
+        let mut d = deck();
+        d.controls = controls;
+        let mut state = SlideState::default();
+        let mut h = Harness::builder().with_size(SIZE).build_ui(move |ui| {
+            let options = SlideOptions {
+                force_controls: force,
+                ..SlideOptions::default()
+            };
+            slide_ui_with(ui, &d, slope_field, &mut state, options);
+        });
+        h.run_steps(3);
+        let sliders = h.query_all_by_role(Role::Slider).count();
+        let boxes = h.query_all_by_role(Role::CheckBox).count();
+        let texts: Vec<String> = text_boxes(h.output()).into_iter().map(|t| t.0).collect();
+        (sliders, boxes, texts)
+    };
+    let (sliders, boxes, _) = run(lectern::deck::Controls::Slide, false);
+    assert!(sliders >= 1 && boxes >= 4, "{sliders} sliders, {boxes} checkboxes");
+    let (sliders, boxes, texts) = run(lectern::deck::Controls::Presenter, false);
+    assert_eq!((sliders, boxes), (0, 0), "the projector shows no controls");
+    assert!(texts.iter().any(|t| t.contains("h = 0.500")), "{texts:?}");
+    for legend in ["Euler", "Midpoint", "RK4", "exact"] {
+        assert!(texts.iter().any(|t| t.trim() == legend), "{legend} in {texts:?}");
+    }
+    let (sliders, _, _) = run(lectern::deck::Controls::Presenter, true);
+    assert!(sliders >= 1, "C brings the controls back");
+}

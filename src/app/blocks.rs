@@ -182,6 +182,21 @@ fn block_ui(
             };
             let top_left = ui.cursor().min;
             let mut used = 0.0f32;
+            // What each column stacks above its first widget (a caption that wraps to two
+            // lines in one column and not in the other): the shorter leads are padded at the
+            // top, so the widgets beside each other start (and end) at the same height.
+            // (Columns without a widget neither pad nor are padded.)
+            let lead = |c: usize, col: &[Block]| -> f32 {
+                let Some(first) = col.iter().position(is_flexible) else {
+                    return 0.0;
+                };
+                (0..first)
+                    .filter_map(|i| measure(ui, &col[i], &[path, &[c, i]].concat(), cw, bctx))
+                    .map(|h| h + look.scaled(size::BLOCK_GAP) + ui.spacing().item_spacing.y)
+                    .sum()
+            };
+            let leads: Vec<f32> = cols.iter().enumerate().map(|(c, col)| lead(c, col)).collect();
+            let max_lead = leads.iter().copied().fold(0.0, f32::max);
             for (c, col) in cols.iter().enumerate() {
                 let rect =
                     Rect::from_min_size(top_left + vec2(c as f32 * (cw + gap), 0.0), vec2(cw, h));
@@ -193,6 +208,9 @@ fn block_ui(
                 );
                 let mut here = path.to_vec();
                 here.push(c);
+                if col.iter().any(is_flexible) {
+                    child.add_space(max_lead - leads[c]);
+                }
                 blocks_ui(&mut child, col, &here, bctx, state, Align::Min);
                 used = used.max(child.min_rect().height());
             }
