@@ -310,7 +310,8 @@ impl SlideWidget for Convergence {
                         .color(color)
                         .radius(style::MARKER_RADIUS * u),
                 );
-                ends.extend(v.first().into_iter().chain(v.last()).map(|e| PlotPoint::new(e[0], e[1])));
+                // every computed point is an obstacle: a label never covers one
+                ends.extend(v.iter().map(|e| PlotPoint::new(e[0], e[1])));
                 // label at the smallest h of the fit (round-off points below the floor do not
                 // count), left of the line, in room the x range leaves for it
                 let fitted_end = v.iter().rev().find(|p| p[1] > ERR_FLOOR.log10());

@@ -75,16 +75,22 @@ pub fn place(
         };
         let first = rect_at(anchor, preferred, size, gap);
         let mut candidates = vec![(first, false)];
+        // nudged up and down from the preferred spot, a line at a time (a short nudge keeps
+        // the label on the side its author chose), then the other sides, further out, and
+        // longer nudges
+        let nudge = |k: i32| first.translate(vec2(0.0, k as f32 * (size.y + 0.25 * gap)));
+        for k in 1..=2 {
+            candidates.push((nudge(k), true));
+            candidates.push((nudge(-k), true));
+        }
         for far in [1.0, 3.0] {
             for side in sides {
                 candidates.push((rect_at(anchor, side, size, gap * far), far > 1.0 || side != preferred));
             }
         }
-        // nudged up and down from the preferred spot, a line at a time
-        for k in 1..=8 {
-            let dy = k as f32 * (size.y + 0.25 * gap);
-            candidates.push((first.translate(vec2(0.0, -dy)), true));
-            candidates.push((first.translate(vec2(0.0, dy)), true));
+        for k in 3..=8 {
+            candidates.push((nudge(k), true));
+            candidates.push((nudge(-k), true));
         }
         if let Some((rect, moved)) = candidates.into_iter().find(|(r, _)| fits(r)) {
             let leader = moved.then(|| [anchor, rect.clamp(anchor)]);

@@ -411,11 +411,12 @@ impl SlideWidget for SlopeField {
                         .width(style::REFERENCE_WIDTH * u),
                 );
             }
-            for path in &c.paths {
+            let n_paths = c.paths.len();
+            for (i, path) in c.paths.iter().enumerate() {
                 p.line(
                     Line::new(path.name.as_str(), path.line.clone())
                         .color(path.color)
-                        .width(style::PATH_WIDTH * u),
+                        .width(style::stacked_width(i, n_paths) * u),
                 );
                 if !path.markers.is_empty() {
                     p.points(

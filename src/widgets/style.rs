@@ -49,6 +49,12 @@ pub fn integrator_color(m: crate::rigid::Integrator) -> Color32 {
 // points by [`unit`], so a thumbnail is the slide scaled down, markers and lines included.
 /// Line width of solution paths.
 pub const PATH_WIDTH: f32 = 3.0;
+/// The width of path `i` of `n` drawn in order: the first widest, the last [`PATH_WIDTH`], so
+/// two methods that agree (midpoint under RK4) both show, the earlier as a rim around the later.
+pub fn stacked_width(i: usize, n: usize) -> f32 {
+    PATH_WIDTH * (1.0 + 0.4 * n.saturating_sub(i + 1) as f32)
+}
+
 /// Exact solutions and other reference curves.
 pub const REFERENCE_WIDTH: f32 = 2.0;
 /// A computed point on a path (a step's end).
