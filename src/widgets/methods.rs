@@ -106,10 +106,12 @@ impl MethodSet {
     }
 
     /// One checkbox per method, labelled in its colour.
+    /// (Where controls are the presenter's: the shown ones as a legend.)
     pub fn toggles_ui(&mut self, ui: &mut egui::Ui) {
         for e in &mut self.entries {
             let color = super::style::text_color(ui, e.color);
-            ui.checkbox(
+            super::style::toggle(
+                ui,
                 &mut e.shown,
                 egui::RichText::new(&e.method.name).color(color).strong(),
             );
