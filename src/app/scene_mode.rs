@@ -98,7 +98,8 @@ impl SceneMode {
             settings: RenderSettings::default(),
             paused: false,
             step_once: false,
-            show_frame_time: true,
+            // off the audience's picture: the presenter panel and the controls (`C`) show it
+            show_frame_time: false,
             controls_open: false,
             controls_button: true,
             selected_material: 0,
