@@ -325,6 +325,10 @@ impl SlideWidget for Stability {
     fn problems(&self) -> Vec<String> {
         self.methods.errors.clone()
     }
+
+    fn colours(&self) -> Vec<(String, egui::Color32)> {
+        self.entries().into_iter().map(|(n, c, _)| (n, c)).collect()
+    }
 }
 
 #[cfg(test)]
