@@ -9,6 +9,9 @@ const PI: f32 = 3.14159265;
 // Snell's ratio from air into water, n_air / n_water = 1 / 1.33
 const ETA_AIR_OVER_WATER: f32 = 0.7518797;
 
+// what the background and the water's reflection show with the environment map off
+const ENV_OFF_RADIANCE: vec3f = vec3f(0.22, 0.22, 0.23);
+
 const DEBUG_NONE: u32 = 0u;
 const DEBUG_SHADOW_MAP: u32 = 1u;
 const DEBUG_NORMALS: u32 = 2u;

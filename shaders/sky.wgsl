@@ -113,7 +113,8 @@ fn fs_background(in: FullscreenOut) -> @location(0) vec4f {
     if (on(g.env_map_on)) {
         c = textureSampleLevel(env_cube, env_sampler, dir, 0.0).rgb;
     } else {
-        c = mix(vec3f(0.5, 0.6, 0.7), vec3f(0.25, 0.35, 0.6), clamp(dir.y, 0.0, 1.0));
+        // no environment: nothing to see or reflect but a flat grey (the "off" picture)
+        c = ENV_OFF_RADIANCE;
     }
     return opaque_out(c, g.eye_m + dir * g.far_m);
 }

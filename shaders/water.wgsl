@@ -77,7 +77,7 @@ fn sky_along(dir: vec3f) -> vec3f {
     if (on(g.env_map_on)) {
         return min(textureSampleLevel(env_cube, env_sampler, dir, 0.0).rgb, vec3f(20.0));
     }
-    return vec3f(0.45, 0.55, 0.7);
+    return ENV_OFF_RADIANCE;
 }
 
 // GGX glint of the sun off the surface, its roughness widened by the normal's variance over
@@ -92,7 +92,9 @@ fn sun_glint(n: vec3f, v: vec3f, fresnel: f32, variance: f32, world_pos: vec3f) 
     let dd = (ndh * a2 - ndh) * ndh + 1.0;
     let d = a2 / (PI * dd * dd);
     let sun = g.sun_color * g.sun_intensity;
-    return min(d * 0.25 * fresnel * n_dot_l, 50.0) * sun * sun_visibility(world_pos, n);
+    // the glint is the water's microfacet lobe: "Lambert only" has none (a factor, not a branch)
+    return min(d * 0.25 * fresnel * n_dot_l, 50.0) * sun * sun_visibility(world_pos, n)
+        * f32(g.cook_torrance_on);
 }
 
 @fragment
@@ -108,7 +110,10 @@ fn fs_main(in: VertexOut) -> @location(0) vec4f {
         n = -n;
     }
     if (g.debug_view == DEBUG_NORMALS) {
-        return vec4f(n * 0.5 + 0.5, 1.0);
+        // a light tint of the water's own normal over the normals of what lies below (the
+        // opaque pass wrote them as colours), so the view shows the geometry, not a sheet
+        let under = below_at(in.clip.xy / g.viewport_size_px).rgb;
+        return vec4f(mix(under, n * 0.5 + 0.5, select(0.3, 1.0, from_below)), 1.0);
     }
     let n_dot_v = clamp(dot(n, v), 1e-4, 1.0);
 

@@ -43,7 +43,8 @@ pub struct SceneMode {
     pub(super) quality: QualityController,
     pub paused: bool,
     pub(super) step_once: bool,
-    pub(super) show_frame_time: bool,
+    /// the frame-time line over the picture (off: the audience does not see it)
+    pub show_frame_time: bool,
     /// the teaching panel as a floating window over the scene (a "controls" button opens it);
     /// a presenter view that shows the panel on its own screen sets `controls_button` false
     pub controls_open: bool,
