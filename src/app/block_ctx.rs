@@ -18,4 +18,7 @@ pub(crate) struct BlockCtx<'a> {
     /// The faults the deck's widgets had when it loaded, at their line and column: a widget's
     /// problem is reported with its place, as `lectern check` reports it.
     pub widget_problems: &'a [crate::deck::WidgetProblem],
+    /// The slide's content area (the canvas inside its margins, above the footer): every
+    /// block's slot must stay inside it.
+    pub content: egui::Rect,
 }

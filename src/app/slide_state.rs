@@ -337,3 +337,54 @@ fn same_file(a: &std::path::Path, b: &std::path::Path) -> bool {
             _ => false,
         }
 }
+
+/// Where a widget was drawn in the last pass: the slot the slide gave it, the rect it used,
+/// and the slide's content area (for the test that every widget stays inside its slot and
+/// every slot inside the slide, above the footer).
+#[derive(Debug, Clone, PartialEq)]
+pub struct DrawnWidget {
+    pub slide: usize,
+    pub path: Vec<usize>,
+    pub kind: &'static str,
+    pub slot: Rect,
+    pub drawn: Rect,
+    pub content: Rect,
+    pass: u64,
+}
+
+fn drawn_widgets_id() -> egui::Id {
+    egui::Id::unique("lectern-drawn-widgets")
+}
+
+/// Notes where a widget was drawn this pass (see [`drawn_widgets`]).
+pub(crate) fn record_drawn_widget(
+    ctx: &egui::Context,
+    slide: usize,
+    path: &[usize],
+    kind: &'static str,
+    slot: Rect,
+    drawn: Rect,
+    content: Rect,
+) {
+    let pass = ctx.cumulative_pass_nr();
+    ctx.data_mut(|d| {
+        let v = d.get_temp_mut_or_default::<Vec<DrawnWidget>>(drawn_widgets_id());
+        v.retain(|w| w.pass + 1 >= pass);
+        v.push(DrawnWidget {
+            slide,
+            path: path.to_vec(),
+            kind,
+            slot,
+            drawn,
+            content,
+            pass,
+        });
+    });
+}
+
+/// The widgets drawn in the latest pass of `ctx`, where they were drawn.
+pub fn drawn_widgets(ctx: &egui::Context) -> Vec<DrawnWidget> {
+    let v: Vec<DrawnWidget> = ctx.data(|d| d.get_temp(drawn_widgets_id()).unwrap_or_default());
+    let last = v.iter().map(|w| w.pass).max().unwrap_or(0);
+    v.into_iter().filter(|w| w.pass == last).collect()
+}

@@ -17,6 +17,10 @@ pub struct Deck {
     /// Colour scheme of the slides.
     #[serde(default)]
     pub theme: Theme,
+    /// Where widgets' sliders, checkboxes and buttons are: on the slide (`Slide`, the default)
+    /// or only on the presenter's side (`Presenter`: the projector shows plots and values).
+    #[serde(default)]
+    pub controls: Controls,
     pub slides: Vec<Slide>,
     /// Prepared tweak states, recalled with the keys 1…9 during the talk.
     #[serde(default)]
@@ -65,6 +69,16 @@ impl Aspect {
         }
         (self.0 as f32 / self.1 as f32).clamp(0.25, 4.0)
     }
+}
+
+/// `controls:` of a deck.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Controls {
+    /// Widgets draw their controls on the slide, for the audience to see them move.
+    #[default]
+    Slide,
+    /// Only the presenter view has the controls; the slide shows each control's value.
+    Presenter,
 }
 
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]

@@ -1,10 +1,12 @@
 //! Right-hand sides written as text: parsed once ([`parse`]), compiled to a flat register
 //! program ([`program`]) and evaluated without allocation.
 
+pub mod derive;
 pub mod greek;
 pub mod parse;
 pub mod program;
 
+pub use derive::derivatives;
 pub use parse::{ExprError, Node, Scope, is_reserved, parse};
 pub use program::Program;
 
