@@ -530,6 +530,7 @@ fn typing_on_the_presenter_view_changes_the_plot_on_enter_and_ctrl_s_writes_it_b
         assert!(names.contains(&"reference") && !names.contains(&"exact"), "{names:?}");
     }
     assert!(h.query_by_label_contains("exact solution was dropped").is_some());
+    assert!(h.query_by_label_contains("vs a fine RK4 reference (exact dropped)").is_some());
     assert!(h.query_by_label_contains("preview (Enter shows it").is_none());
     // an invalid edit (`*(` appended: every keystroke leaves it unparsable): the plot keeps
     // the last good equation, the error shows its column (the end, 18)

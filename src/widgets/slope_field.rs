@@ -369,7 +369,10 @@ impl SlideWidget for SlopeField {
         // Errors line first, so the plot can take the rest of the height.
         ui.horizontal(|ui| {
             ui.label(egui::RichText::new(label).strong());
-            if self.spec.exact {
+            if self.spec.exact && self.ode.dropped_exact().is_some() {
+                // the typed equation has no exact solution of its own
+                ui.label("  global error vs a fine RK4 reference (exact dropped):");
+            } else if self.spec.exact {
                 ui.label("  global error at the end:");
             }
             for p in &c.paths {
