@@ -14,6 +14,7 @@ pub mod pairs;
 pub mod problem;
 pub mod solve;
 pub mod stability;
+pub mod stability_region;
 pub mod study;
 pub mod symplectic;
 pub mod system;
