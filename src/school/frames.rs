@@ -182,8 +182,15 @@ pub fn transport_step(q_old: Quat, heading_new: Vec3) -> TransportStep {
     let heading_old = q_old * FISH_FORWARD;
     let h = heading_new.normalize_or(heading_old);
     let cross = heading_old.cross(h);
-    let angle_rad = heading_old.dot(h).clamp(-1.0, 1.0).acos();
-    let axis = cross.try_normalize().filter(|_| angle_rad > 1e-6);
+    // parallel headings (|sin| below f32 noise, ~0.006°): no rotation and no axis; acos of a
+    // dot product a rounding short of 1 would read as a few hundredths of a degree
+    let straight = cross.length() < 1e-4 && heading_old.dot(h) > 0.0;
+    let angle_rad = if straight {
+        0.0
+    } else {
+        heading_old.dot(h).clamp(-1.0, 1.0).acos()
+    };
+    let axis = if straight { None } else { cross.try_normalize() };
     let q_rotation = axis.map_or(Quat::IDENTITY, |a| Quat::from_axis_angle(a, angle_rad));
     TransportStep {
         heading_old,
