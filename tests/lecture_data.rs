@@ -300,3 +300,21 @@ fn the_convergence_slopes_are_the_orders() {
         e.readouts["convergence"]
     );
 }
+
+/// Slide 12 names the typo's line by the colour the colour map gives it on slide 13.
+#[test]
+fn the_rk4_slide_names_the_typos_colour() {
+    use lectern::widgets::colors::{Role, name_of};
+    let deck = lecture();
+    let slide = &deck.slides[deck.find("rk4").unwrap()];
+    let text: String = slide
+        .body
+        .iter()
+        .filter_map(|b| match b {
+            Block::Text(t) => Some(t.as_str()),
+            _ => None,
+        })
+        .collect();
+    let name = name_of(Role::Rk4Typo);
+    assert!(text.contains(&format!("{name} line")), "{text:?} does not say the {name} line");
+}

@@ -709,3 +709,52 @@ fn simulation_loop_snapshot() {
     r.add(h.try_snapshot_options("widget-simulation-loop", &options()));
     r.unwrap();
 }
+
+/// The deck's colour map as the audience meets it: every method's colour, gathered from every
+/// widget of the bundled lecture, is the same wherever that method appears, reads as a line on
+/// both themes (3:1), and the colours that share a slide stay apart in CIEDE2000 for normal,
+/// protanope and deuteranope vision (bounds justified in `widgets::colors`).
+#[test]
+fn one_colour_per_method_across_the_deck_distinct_on_every_slide() {
+    use lectern::widgets::colors::{self, Vision};
+    use lectern::widgets::style::contrast_ratio;
+    let deck = parse_deck(include_str!("../slides/lecture.ron"), deck_path()).unwrap();
+    let mut seen: std::collections::BTreeMap<String, (egui::Color32, usize)> = Default::default();
+    let mut slides_checked = 0;
+    for (i, slide) in deck.slides.iter().enumerate() {
+        let mut on_slide: Vec<(String, egui::Color32)> = Vec::new();
+        for (_, spec) in slide.widgets() {
+            on_slide.extend(spec.instantiate_in(Some(deck_path())).colours());
+        }
+        on_slide.sort_by(|a, b| a.0.cmp(&b.0));
+        on_slide.dedup();
+        for (name, c) in &on_slide {
+            let (first, at) = *seen.entry(name.clone()).or_insert((*c, i + 1));
+            assert_eq!(first, *c, "{name} is {first:?} on slide {at} but {c:?} on {}", i + 1);
+            for theme in [lectern::deck::Theme::Dark, lectern::deck::Theme::Light] {
+                let p = lectern::app::theme::Palette::of(theme);
+                for bg in [p.background, p.panel] {
+                    let r = contrast_ratio(*c, bg);
+                    assert!(r >= colors::MIN_LINE_CONTRAST, "{name} on {bg:?}: {r:.2}");
+                }
+            }
+        }
+        for (k, (a, ca)) in on_slide.iter().enumerate() {
+            for (b, cb) in &on_slide[k + 1..] {
+                for v in [Vision::Normal, Vision::Protanopia, Vision::Deuteranopia] {
+                    let d = colors::delta_e(*ca, *cb, v);
+                    assert!(
+                        d >= colors::MIN_DELTA_E_ON_A_SLIDE,
+                        "slide {}: {a} and {b} are ΔE {d:.1} apart for {v:?}",
+                        i + 1
+                    );
+                }
+            }
+        }
+        slides_checked += usize::from(on_slide.len() > 1);
+    }
+    assert!(slides_checked >= 8, "{slides_checked} slides compare methods");
+    // the names slides use for them
+    assert_eq!(colors::name_of(colors::Role::Method(lectern::ode::Method::Euler)), "vermillion");
+    assert_eq!(colors::name_of(colors::Role::Rk4Typo), "pink");
+}

@@ -71,6 +71,14 @@ impl MethodSet {
         Self { entries, errors }
     }
 
+    /// Every method's legend name and colour, in the deck's order.
+    pub fn colours(&self) -> Vec<(String, egui::Color32)> {
+        self.entries
+            .iter()
+            .map(|e| (e.method.name.clone(), e.color))
+            .collect()
+    }
+
     /// The methods switched on, in the deck's order.
     pub fn shown(&self) -> impl Iterator<Item = &MethodEntry> {
         self.entries.iter().filter(|e| e.shown)

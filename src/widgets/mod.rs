@@ -25,6 +25,10 @@ macro_rules! spec_plumbing {
 /// equation (`self.ode`); `R` resets all three.
 macro_rules! ode_plumbing {
     ($variant:ident) => {
+        ode_plumbing!($variant, |_: &Self| Vec::new());
+    };
+    // `$extra`: colours the widget draws besides its `methods:` (work-precision's RK5)
+    ($variant:ident, $extra:expr) => {
         fn reset(&mut self) {
             self.spec = self.initial.clone();
             self.methods.reset();
@@ -39,9 +43,16 @@ macro_rules! ode_plumbing {
         fn problems(&self) -> Vec<String> {
             $crate::widgets::style::problem_lines(self.ode.load_error(), &self.methods.errors)
         }
+        fn colours(&self) -> Vec<(String, egui::Color32)> {
+            let extra: fn(&Self) -> Vec<(String, egui::Color32)> = $extra;
+            let mut v = self.methods.colours();
+            v.extend(extra(self));
+            v
+        }
     };
 }
 
+pub mod colors;
 pub mod convergence;
 pub mod live_ode;
 pub mod methods;
@@ -79,6 +90,11 @@ pub trait SlideWidget: Send {
     }
     /// Why the widget cannot draw all it should (its equation or a tableau file did not load).
     fn problems(&self) -> Vec<String> {
+        Vec::new()
+    }
+    /// The method colours it draws, by the name its legend gives (`Euler`, `RK4 (notes' typo)`),
+    /// for the deck-wide colour-map test: one name, one colour, on every slide.
+    fn colours(&self) -> Vec<(String, egui::Color32)> {
         Vec::new()
     }
     /// Every computed point of its paths (not the decimated draw data), for `export --data`.

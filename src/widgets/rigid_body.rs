@@ -268,6 +268,16 @@ fn paint_box(
 }
 
 impl SlideWidget for RigidBodyView {
+    fn colours(&self) -> Vec<(String, egui::Color32)> {
+        self.runs
+            .iter()
+            .map(|r| {
+                let m = r.body.integrator;
+                (format!("{m:?}"), style::integrator_color(m))
+            })
+            .collect()
+    }
+
     fn ui(&mut self, ui: &mut egui::Ui) {
         style::projector_text(ui);
         ui.horizontal(|ui| {

@@ -450,6 +450,10 @@ impl SlideWidget for Stability {
         }
         v
     }
+
+    fn colours(&self) -> Vec<(String, egui::Color32)> {
+        self.entries().into_iter().map(|(n, _, c, _)| (n, c)).collect()
+    }
 }
 
 #[cfg(test)]

@@ -185,6 +185,13 @@ impl StepConstruction {
 }
 
 impl SlideWidget for StepConstruction {
+    fn colours(&self) -> Vec<(String, egui::Color32)> {
+        [Construction::Euler, Construction::Midpoint, Construction::Rk4]
+            .into_iter()
+            .map(|c| (c.name().to_owned(), style::method_color(c.method())))
+            .collect()
+    }
+
     fn ui(&mut self, ui: &mut egui::Ui) {
         style::projector_text(ui);
         let ink = style::ink(ui);

@@ -3,59 +3,35 @@
 
 use egui::Color32;
 
+use super::colors;
+
 /// Labels and checkboxes of the exact solution: a grey readable on light and dark slides.
 /// Exact curves themselves are drawn in [`ink`], the theme's strongest text colour.
 pub const EXACT: Color32 = Color32::from_gray(140);
-pub const EULER: Color32 = Color32::from_rgb(213, 94, 0);
-pub const MIDPOINT: Color32 = Color32::from_rgb(0, 114, 178);
-pub const RK4: Color32 = Color32::from_rgb(0, 158, 115);
-pub const HEUN: Color32 = Color32::from_rgb(204, 121, 167);
-pub const RK4_TYPO: Color32 = Color32::from_rgb(230, 159, 0);
-pub const DOPRI: Color32 = Color32::from_rgb(86, 180, 233);
+// The methods' colours come from the deck's one colour map, [`colors`]; these names are kept
+// for the widgets that draw one fixed method.
+pub const EULER: Color32 = colors::VERMILLION.color;
+pub const MIDPOINT: Color32 = colors::BLUE.color;
+pub const RK4: Color32 = colors::BLUISH_GREEN.color;
+pub const HEUN: Color32 = colors::WINE.color;
+pub const RK4_TYPO: Color32 = colors::PINK.color;
+/// Dormand–Prince's fifth-order formula at a fixed step ("RK5").
+pub const RK5: Color32 = colors::TEAL.color;
 pub const FIELD: Color32 = Color32::from_rgb(150, 150, 160);
 pub const DIVERGED: Color32 = Color32::from_rgb(200, 0, 0);
-/// The adaptive embedded pairs. The Okabe–Ito palette is spent on the methods above, so these
-/// are mid-luminance hues chosen to stay apart from it and from each other, each with a
-/// contrast of at least 3:1 as lines on both slide themes (light paper and dark slate; tested;
-/// their labels go through [`text_color`]): Dopri5 a deeper blue than RK5 (the same formula at
-/// fixed h), Tsit5 ochre, the Verner family from brown (6) through slate (7) and orchid (8) to
-/// violet (9), DOP853 magenta.
-pub const DOPRI5: Color32 = Color32::from_rgb(40, 130, 210);
-pub const TSIT5: Color32 = Color32::from_rgb(175, 135, 0);
-pub const VERN6: Color32 = Color32::from_rgb(165, 105, 60);
-pub const VERN7: Color32 = Color32::from_rgb(105, 125, 190);
-pub const VERN8: Color32 = Color32::from_rgb(185, 95, 200);
-pub const VERN9: Color32 = Color32::from_rgb(130, 95, 235);
-pub const DOP853: Color32 = Color32::from_rgb(215, 55, 140);
-/// Symplectic Euler (rigid body only): a violet, distinct from the palette's method colours
-/// and readable on light and dark slides.
-pub const SYMPLECTIC_EULER: Color32 = Color32::from_rgb(150, 110, 220);
+pub const SYMPLECTIC_EULER: Color32 = colors::STEEL_BLUE.color;
 
 /// Colours of deck tableaux other than the notes' RK4 typo (which always gets [`RK4_TYPO`]),
 /// in order.
-pub const EXTRA_COLORS: [Color32; 3] = [HEUN, DOPRI, SYMPLECTIC_EULER];
+pub const EXTRA_COLORS: [Color32; 3] = [
+    colors::TABLEAU_HUES[0].color,
+    colors::TABLEAU_HUES[1].color,
+    colors::TABLEAU_HUES[2].color,
+];
 
-/// The colour of a built-in method, the same in every widget. The implicit methods take the
-/// colours of their explicit namesakes' families until the deck's colour map gives them their own.
+/// The colour of a built-in method, the same in every widget ([`colors::method_hue`]).
 pub fn method_color(m: crate::ode::Method) -> Color32 {
-    use crate::ode::Method;
-    match m {
-        Method::Euler => EULER,
-        Method::Midpoint => MIDPOINT,
-        Method::Heun => HEUN,
-        Method::Rk4 => RK4,
-        Method::SymplecticEuler => SYMPLECTIC_EULER,
-        Method::Verlet => DOPRI,
-        Method::ImplicitEuler => VERN6,
-        Method::ImplicitMidpoint => VERN7,
-        Method::Dopri5 => DOPRI5,
-        Method::Tsit5 => TSIT5,
-        Method::Vern6 => VERN6,
-        Method::Vern7 => VERN7,
-        Method::Vern8 => VERN8,
-        Method::Vern9 => VERN9,
-        Method::Dop853 => DOP853,
-    }
+    colors::method_hue(m).color
 }
 
 /// The colour of a rigid-body integrator: the same as its tableau's everywhere else.
@@ -329,19 +305,15 @@ mod contrast_tests {
             RK4,
             HEUN,
             RK4_TYPO,
-            DOPRI,
+            RK5,
             SYMPLECTIC_EULER,
-            DOPRI5,
-            TSIT5,
-            VERN6,
-            VERN7,
-            VERN8,
-            VERN9,
-            DOP853,
-        ];
+        ]
+        .into_iter()
+        .chain(colors::all_roles().into_iter().map(|r| colors::hue_of(r).color))
+        .collect::<Vec<_>>();
         let mut changed = 0;
         for bg in backgrounds {
-            for c in colours {
+            for &c in &colours {
                 let r = readable_on(c, bg);
                 assert!(
                     contrast_ratio(r, bg) >= MIN_TEXT_CONTRAST,
@@ -369,7 +341,7 @@ mod contrast_tests {
 }
 
 #[cfg(test)]
-mod tests {
+mod ladder_tests {
     use super::*;
 
     #[test]
@@ -398,44 +370,5 @@ mod tests {
         assert!((h_ladder_next(0.7071, true) - 1.0).abs() < 1e-12);
         assert!((h_ladder_next(0.7071, false) - 0.5).abs() < 1e-12);
         assert!((h_ladder_next(1.5, false) - 1.0).abs() < 1e-12);
-    }
-
-    fn contrast(a: Color32, b: Color32) -> f32 {
-        contrast_ratio(a, b)
-    }
-
-    #[test]
-    fn pair_colours_read_on_both_themes_and_differ_from_every_method_colour() {
-        // the slide backgrounds of app::theme (dark slate, light paper) and plain white
-        let backgrounds = [
-            Color32::from_rgb(0x16, 0x19, 0x21),
-            Color32::from_rgb(0xfb, 0xf9, 0xf4),
-            Color32::WHITE,
-        ];
-        let pairs = [DOPRI5, TSIT5, VERN6, VERN7, VERN8, VERN9, DOP853];
-        for c in pairs {
-            for bg in backgrounds {
-                assert!(
-                    contrast(c, bg) >= 3.0,
-                    "{c:?} on {bg:?}: {}",
-                    contrast(c, bg)
-                );
-            }
-        }
-        let all = [
-            EULER, MIDPOINT, RK4, HEUN, RK4_TYPO, DOPRI, DOPRI5, TSIT5, VERN6, VERN7, VERN8, VERN9,
-            DOP853,
-        ];
-        for (i, a) in all.iter().enumerate() {
-            for b in &all[i + 1..] {
-                let d = (i32::from(a.r()) - i32::from(b.r())).abs()
-                    + (i32::from(a.g()) - i32::from(b.g())).abs()
-                    + (i32::from(a.b()) - i32::from(b.b())).abs();
-                assert!(d >= 60, "{a:?} and {b:?} are too alike ({d})");
-            }
-        }
-        for m in crate::ode::Method::ALL {
-            assert_ne!(method_color(m), EXACT, "{m}");
-        }
     }
 }

@@ -84,6 +84,12 @@ impl Taylor {
 }
 
 impl SlideWidget for Taylor {
+    fn colours(&self) -> Vec<(String, egui::Color32)> {
+        (1..=self.spec.order.min(6))
+            .map(|n| (format!("order {n}"), order_color(n)))
+            .collect()
+    }
+
     fn ui(&mut self, ui: &mut egui::Ui) {
         style::projector_text(ui);
         let ink = style::ink(ui);

@@ -97,7 +97,7 @@ impl WorkPrecision {
             })
             .collect();
         if self.spec.rk5 {
-            v.push((curve("rk5", "RK5", style::DOPRI, false), Job::Rk5));
+            v.push((curve("rk5", "RK5", style::RK5, false), Job::Rk5));
         }
         v
     }
@@ -207,7 +207,7 @@ impl SlideWidget for WorkPrecision {
             ui.checkbox(
                 &mut self.spec.rk5,
                 egui::RichText::new("RK5")
-                    .color(style::text_color(ui, style::DOPRI))
+                    .color(style::text_color(ui, style::RK5))
                     .strong(),
             );
             if self.busy() {
@@ -307,7 +307,13 @@ impl SlideWidget for WorkPrecision {
         v
     }
 
-    ode_plumbing!(WorkPrecision);
+    ode_plumbing!(WorkPrecision, |w: &Self| {
+        if w.spec.rk5 {
+            vec![("RK5".to_owned(), style::RK5)]
+        } else {
+            Vec::new()
+        }
+    });
 
     /// `series,sweep,h_or_tol,f_evals,error`: every run, series by method key (`rk5` for the
     /// fixed-step fifth-order weights), `sweep` `h` or `tol`. Wall time is left out: it is the
