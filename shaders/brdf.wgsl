@@ -65,7 +65,13 @@ fn env_radiance(dir: vec3f, roughness: f32) -> vec3f {
 fn shade(base: vec3f, metallic: f32, roughness_in: f32, reflectance: f32,
          n: vec3f, v: vec3f, world_pos: vec3f, ao: f32) -> vec3f {
     let roughness = clamp(roughness_in, 0.045, 1.0);
-    let alpha = roughness * roughness;
+    // specular anti-aliasing (Kaplanyan, Hill, Patney & Lefohn 2016, "Filtering distributions
+    // of normals for shading antialiasing"): the normal's variance over the pixel, from its
+    // screen derivatives, widens the GGX lobe, so small shiny curves (fish, ripples) do not
+    // sparkle from frame to frame
+    let dn = fwidth(n);
+    let variance = min(2.0 * dot(dn, dn), 0.18);
+    let alpha = sqrt(min(roughness * roughness * roughness * roughness + variance, 1.0));
     let l = g.sun_dir;
     let h = normalize(v + l);
     let n_dot_v = max(dot(n, v), 1e-4);

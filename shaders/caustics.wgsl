@@ -33,8 +33,10 @@ const MAX_INTENSITY: f32 = 6.0;
 // Where the sun's ray through the surface point of rest position `rest_xz` crosses it
 // (projected along the sun onto the mean level: xy) and where its refracted ray hits the
 // plane y = `floor_y` (zw).
-fn entry_and_landing(rest_xz: vec2f, floor_y: f32) -> vec4f {
-    let s = gerstner(rest_xz, g.time_secs);
+// Waves shorter than a few texels of the map fade out (`gerstner_faded`): their focusing
+// would alias into noise whose mean is not flat water's.
+fn entry_and_landing(rest_xz: vec2f, floor_y: f32, texel_m: f32) -> vec4f {
+    let s = gerstner_faded(rest_xz, g.time_secs, texel_m);
     let sun = g.sun_dir;
     let entry = s.position.xz - sun.xz * (s.position.y - g.water_level_m) / max(sun.y, 0.05);
     let ray = refract(-sun, s.normal, ETA_AIR_OVER_WATER);
@@ -51,17 +53,18 @@ fn fs_caustics(in: FullscreenOut) -> @location(0) vec4f {
     // texture u → world x, v → world z (caustics_light reads it the same way)
     let floor_xz = (in.uv * 2.0 - 1.0) * g.caustics_half_extent_m;
     let floor_y = g.water_level_m - g.caustics_depth_m;
+    let texel_m = 2.0 * g.caustics_half_extent_m * fwidth(in.uv.x);
     // over flat water the ray arriving here left the surface this far back along the
     // refracted sun
     let flat_ray = refract(-g.sun_dir, vec3f(0.0, 1.0, 0.0), ETA_AIR_OVER_WATER);
     var rest = floor_xz - flat_ray.xz * g.caustics_depth_m / max(-flat_ray.y, 0.05);
     for (var i = 0u; i < GATHER_STEPS; i++) {
-        rest += floor_xz - entry_and_landing(rest, floor_y).zw;
+        rest += floor_xz - entry_and_landing(rest, floor_y, texel_m).zw;
     }
     let e = JACOBIAN_STEP_M;
-    let a = entry_and_landing(rest, floor_y);
-    let dx = entry_and_landing(rest + vec2f(e, 0.0), floor_y) - a;
-    let dz = entry_and_landing(rest + vec2f(0.0, e), floor_y) - a;
+    let a = entry_and_landing(rest, floor_y, texel_m);
+    let dx = entry_and_landing(rest + vec2f(e, 0.0), floor_y, texel_m) - a;
+    let dz = entry_and_landing(rest + vec2f(0.0, e), floor_y, texel_m) - a;
     let entry_area = abs(cross2(dx.xy, dz.xy));
     let landing_area = max(abs(cross2(dx.zw, dz.zw)), entry_area / MAX_INTENSITY);
     return vec4f(entry_area / landing_area, 0.0, 0.0, 1.0);

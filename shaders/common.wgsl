@@ -4,10 +4,13 @@
 // The CPU twin of `gerstner` is `crate::waves::WaveSum` (and `src/scene/surface.rs`): keep
 // them the same formula: θ = k D·p0 − ω t, horizontal amplitude Q A = steepness / (k N).
 
-const MAX_WAVES: u32 = 8u;
+const MAX_WAVES: u32 = 32u;
 const PI: f32 = 3.14159265;
 // Snell's ratio from air into water, n_air / n_water = 1 / 1.33
 const ETA_AIR_OVER_WATER: f32 = 0.7518797;
+
+// what the background and the water's reflection show with the environment map off
+const ENV_OFF_RADIANCE: vec3f = vec3f(0.22, 0.22, 0.23);
 
 const DEBUG_NONE: u32 = 0u;
 const DEBUG_SHADOW_MAP: u32 = 1u;
@@ -54,7 +57,8 @@ struct Globals {
     caustics_on: u32,
     caustics_half_extent_m: f32, // the caustics map covers |x|, |z| ≤ this
     caustics_depth_m: f32,      // below the water level: the floor the map is focused on
-    _pad: vec2f,
+    rad_per_px: f32,            // the angle one pixel of the HDR target subtends, radians
+    _pad: f32,
     waves: array<Wave, MAX_WAVES>,
 }
 
@@ -79,11 +83,19 @@ struct Surface {
 
 // The Gerstner sum at rest position (x, z): displaced position and analytic frame.
 fn gerstner(xz: vec2f, t: f32) -> Surface {
+    return gerstner_faded(xz, t, 0.0);
+}
+
+// As `gerstner`, where one pixel covers `footprint_m` metres of water: each wave shorter than
+// six pixels there fades out (gone at two), so the far sea does not alias into noise and
+// sparkle; the waves under the floating bodies (≫ 6 px each) are the CPU twin's, unfaded.
+fn gerstner_faded(xz: vec2f, t: f32, footprint_in_m: f32) -> Surface {
     var p = vec3f(xz.x, g.water_level_m, xz.y);
     // tangents ∂P/∂x and ∂P/∂z; the normal is their exact cross product (keeps the cross terms
     // GPU Gems eq. 12 drops, as src/waves.rs does)
     var tg = vec3f(1.0, 0.0, 0.0);
     var bt = vec3f(0.0, 0.0, 1.0);
+    let footprint_m = max(footprint_in_m, 1e-6);
     // all MAX_WAVES slots (unused ones are zero and add nothing), not `g.wave_count`: a loop
     // bound read from a uniform makes lavapipe (Mesa 22.3) compile and keep a new shader variant
     // every frame (+0.25 MB per frame; see pbr.wgsl and docs/benchmarks/scene.md)
@@ -91,8 +103,9 @@ fn gerstner(xz: vec2f, t: f32) -> Surface {
         let w = g.waves[i];
         let d = w.direction;
         let k = max(w.wavenumber_per_m, 1e-6); // an unused slot: k = 0
-        let a = w.amplitude_m;
-        let qka = w.steepness_qka;
+        let fade = smoothstep(2.0, 6.0, 2.0 * PI / (k * footprint_m));
+        let a = w.amplitude_m * fade;
+        let qka = w.steepness_qka * fade;
         let phase = k * dot(d, xz) - w.angular_freq_per_sec * t;
         let s = sin(phase);
         let c = cos(phase);
@@ -156,4 +169,51 @@ fn caustics_light(world_pos: vec3f) -> f32 {
     let inside = 1.0 - smoothstep(0.85, 1.0, edge);
     let depth_fade = clamp(depth / max(g.caustics_depth_m, 1e-3), 0.0, 1.0);
     return mix(1.0, focused, f32(g.caustics_on) * inside * depth_fade);
+}
+
+// The sun's direction under water (refracted at a flat surface), pointing towards the sun.
+fn sun_dir_in_water() -> vec3f {
+    return -refract(-g.sun_dir, vec3f(0.0, 1.0, 0.0), ETA_AIR_OVER_WATER);
+}
+
+// Light along a straight path of `path_m` metres through water that starts `depth0_m` below
+// the surface and descends `descent_per_m` per metre (negative: rising). Beer–Lambert per
+// channel for what lies behind, and single-scattered sunlight gathered along the way: at path
+// length s the sunlight has crossed (depth0 + descent·s) / μ_sun metres of water and the
+// scattered light s more, so the in-scatter is the closed form of
+// ∫₀ᴸ σ e^{−σ (depth0/μ + s (1 + descent/μ))} ds (Preetham 1999 §6 uses the same single-
+// scattering integral for aerial perspective). `scatter_color` is then the radiance of deep
+// water seen horizontally just under the surface, per unit of sun-plus-sky light.
+struct WaterPath {
+    transmittance: vec3f,
+    inscatter: vec3f,
+}
+
+fn water_path(path_m: f32, depth0_m: f32, descent_per_m: f32) -> WaterPath {
+    let sigma = g.absorption_per_m;
+    let mu_sun = max(sun_dir_in_water().y, 0.1);
+    let k = 1.0 + descent_per_m / mu_sun;
+    let len = max(path_m, 0.0);
+    let transmittance = exp(-sigma * len);
+    // (1 − e^{−σkL}) / k, and its limit σL as k → 0 (a path rising as fast as the light fades)
+    let gathered = select((vec3f(1.0) - exp(-sigma * k * len)) / k, sigma * len, abs(k) < 1e-3);
+    let light = g.sun_color * g.sun_intensity * 0.5 + vec3f(0.5);
+    let above = exp(-sigma * max(depth0_m, 0.0) / mu_sun);
+    return WaterPath(transmittance, g.scatter_color * light * above * gathered);
+}
+
+// What the opaque passes write: linear colour, and in alpha the distance from the eye (metres).
+// The water pass reads that distance from this colour target, never from the depth attachment
+// it tests against (sampling an attached depth texture is not allowed on WebGL2/GLES). With the
+// eye under water the path to the point is fogged here, the water surface not being in between.
+fn opaque_out(color: vec3f, world_pos: vec3f) -> vec4f {
+    let dist = distance(world_pos, g.eye_m);
+    let eye_depth = g.water_level_m - g.eye_m.y;
+    var c = color;
+    if (eye_depth > 0.0 && g.debug_view != DEBUG_NORMALS) {
+        let dir = (world_pos - g.eye_m) / max(dist, 1e-4);
+        let w = water_path(dist, eye_depth, -dir.y);
+        c = c * w.transmittance + w.inscatter;
+    }
+    return vec4f(c, dist);
 }

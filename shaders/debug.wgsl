@@ -1,4 +1,5 @@
-// debug.wgsl — teaching views: the sun's shadow map as grey levels (near = dark), and the
+// debug.wgsl — teaching views: the sun's shadow map as grey levels (near = dark), zoomed to
+// its casters with their depth range stretched, and the
 // environment cube unfolded as a horizontal cross (+y above, −y below; −x +z +x −z across),
 // each face showing its roughness-blurred mip chain from left (sharp) to right in a strip, and
 // the caustics map seen from above (+x right, +z down; 1 = flat water's light, mid grey).
@@ -64,9 +65,39 @@ fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
             return to_target(vec3f(0.05));
         }
         let size = vec2f(textureDimensions(shadow_map));
-        let d = textureLoad(shadow_map, vec2i(p * size), 0);
-        let grey = pow(clamp(d, 0.0, 1.0), 2.0);
-        return to_target(vec3f(grey));
+        // a 16×16 survey of the map: the casters' depth range (empty texels hold the cleared
+        // 1.0 and stay out) and the square around them, so the view fills its panel with the
+        // casters and stretches their depths over the grey ramp (near the sun dark, far light)
+        var lo = 1.0;
+        var hi = 0.0;
+        var uv_lo = vec2f(1.0);
+        var uv_hi = vec2f(0.0);
+        for (var j = 0; j < 16; j++) {
+            for (var i = 0; i < 16; i++) {
+                let uv = (vec2f(f32(i), f32(j)) + 0.5) / 16.0;
+                let s = textureLoad(shadow_map, vec2i(uv * size), 0);
+                if (s < 0.9999) {
+                    lo = min(lo, s);
+                    hi = max(hi, s);
+                    uv_lo = min(uv_lo, uv);
+                    uv_hi = max(uv_hi, uv);
+                }
+            }
+        }
+        var window_lo = vec2f(0.0);
+        var window_side = 1.0;
+        if (hi > 0.0) {
+            let centre = 0.5 * (uv_lo + uv_hi);
+            window_side = min(max(uv_hi.x - uv_lo.x, uv_hi.y - uv_lo.y) + 2.0 / 16.0, 1.0);
+            window_lo = clamp(centre - 0.5 * window_side, vec2f(0.0), vec2f(1.0 - window_side));
+        }
+        let d = textureLoad(shadow_map, vec2i((window_lo + p * window_side) * size), 0);
+        if (d >= 0.9999) {
+            // nothing casts here: a faint blue, not white, so the casters stand out
+            return to_target(vec3f(0.55, 0.62, 0.75));
+        }
+        let t = clamp((d - lo) / max(hi - lo, 1e-4), 0.0, 1.0);
+        return to_target(vec3f(mix(0.03, 0.95, t)));
     }
     // env cube cross: 4 × 3 cells, top half of the screen; mips in a strip below
     let cell_px = min(size_px.x / 4.0, size_px.y / 3.6);

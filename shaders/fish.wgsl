@@ -87,7 +87,7 @@ fn fs_main(in: VertexOut) -> @location(0) vec4f {
         n = normalize(mat3x3f(t, b, n) * tn);
     }
     if (g.debug_view == DEBUG_NORMALS) {
-        return vec4f(n * 0.5 + 0.5, 1.0);
+        return opaque_out(n * 0.5 + 0.5, in.world_pos);
     }
     // countershading: dark back, silver belly (uv.y runs belly 0 → back 1)
     let back = smoothstep(0.45, 0.8, in.uv.y);
@@ -95,5 +95,5 @@ fn fs_main(in: VertexOut) -> @location(0) vec4f {
     let v = normalize(g.eye_m - in.world_pos);
     let color = shade(base, material.metallic * (1.0 - back), material.roughness,
                       material.reflectance, n, v, in.world_pos, 1.0);
-    return vec4f(color, 1.0);
+    return opaque_out(color, in.world_pos);
 }

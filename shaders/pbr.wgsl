@@ -68,10 +68,17 @@ fn mapped_normal(n_in: vec3f, t_in: vec4f, uv: vec2f, strength: f32) -> vec3f {
 fn fs_main(in: VertexOut) -> @location(0) vec4f {
     let n = mapped_normal(in.normal, in.tangent, in.uv, material.normal_strength);
     if (g.debug_view == DEBUG_NORMALS) {
-        return vec4f(n * 0.5 + 0.5, 1.0);
+        return opaque_out(n * 0.5 + 0.5, in.world_pos);
     }
     let v = normalize(g.eye_m - in.world_pos);
-    let color = shade(material.base_color.rgb, material.metallic, material.roughness,
+    // the waterline: a wet band just above the surface where the waves splash, darker (water
+    // fills the pores, less light scatters back out) and glossier (a film of water)
+    let surface_y = gerstner(in.world_pos.xz, g.time_secs).position.y;
+    let above_m = in.world_pos.y - surface_y;
+    let wet = (1.0 - smoothstep(0.03, 0.18, above_m)) * step(0.0, above_m);
+    let base = material.base_color.rgb * mix(1.0, 0.55, wet);
+    let roughness = mix(material.roughness, 0.12, wet);
+    let color = shade(base, material.metallic, roughness,
                       material.reflectance, n, v, in.world_pos, object.ambient_occlusion);
-    return vec4f(color, 1.0);
+    return opaque_out(color, in.world_pos);
 }

@@ -204,3 +204,107 @@ impl WaveSum {
         self.terms().map(|w| w.q_amp * w.k).sum()
     }
 }
+
+/// Standard gravity, m/s² (deep-water dispersion ω² = g k).
+pub const GRAVITY: f64 = 9.81;
+
+/// A wind sea as `count` Gerstner waves drawn from the JONSWAP frequency spectrum (Hasselmann
+/// et al. 1973) with a directional spread about the wind, scaled to a significant wave height:
+/// irregular crests and caustics instead of the lattice a few hand-placed waves make. Each wave
+/// takes deep-water speed √(g / k); the draws are seeded, so the same file gives the same sea.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct WaveSpectrum {
+    /// how many waves (the shader sums at most `scene::model::MAX_WAVES` in all)
+    pub count: u32,
+    /// wavelength at the spectrum's peak, metres
+    pub peak_wavelength: f32,
+    /// H_s = 4 √m₀, metres (m₀: the variance of the surface height)
+    pub significant_height: f32,
+    /// the wind's direction in the xz plane (normalised on use)
+    pub wind_direction: [f32; 2],
+    /// standard deviation of the waves' directions about the wind, degrees
+    pub spread_deg: f32,
+    /// JONSWAP peak enhancement γ (1: Pierson–Moskowitz, 3.3: a young sea)
+    pub peak_enhancement: f32,
+    /// Gerstner steepness shared by the waves (0..=1; 1 is the sharpest without loops)
+    pub steepness: f32,
+    pub seed: u64,
+}
+
+impl Default for WaveSpectrum {
+    fn default() -> Self {
+        Self {
+            count: 24,
+            peak_wavelength: 8.0,
+            significant_height: 0.3,
+            wind_direction: [1.0, 0.3],
+            spread_deg: 30.0,
+            peak_enhancement: 3.3,
+            steepness: 0.7,
+            seed: 7,
+        }
+    }
+}
+
+impl WaveSpectrum {
+    /// The JONSWAP density S(ω) up to its scale α g² (scaled to H_s in [`Self::waves`]).
+    fn jonswap_shape(omega: f64, omega_peak: f64, gamma: f64) -> f64 {
+        let sigma = if omega <= omega_peak { 0.07 } else { 0.09 };
+        let r = (-((omega - omega_peak).powi(2)) / (2.0 * sigma * sigma * omega_peak * omega_peak))
+            .exp();
+        omega.powi(-5) * (-1.25 * (omega_peak / omega).powi(4)).exp() * gamma.powf(r)
+    }
+
+    /// The waves: frequencies in equal bands of ln ω from 0.7 to 4 ω_peak, one jittered draw per
+    /// band, amplitude √(2 S(ω) Δω) (each wave carries its band's variance), direction the
+    /// wind's turned by a normally distributed angle.
+    pub fn waves(&self) -> Vec<GerstnerWave> {
+        let n = self.count as usize;
+        if n == 0 {
+            return Vec::new();
+        }
+        let k_peak = TAU / (self.peak_wavelength as f64).max(0.01);
+        let omega_peak = (GRAVITY * k_peak).sqrt();
+        let (lo, hi) = ((0.7 * omega_peak).ln(), (4.0 * omega_peak).ln());
+        let band = (hi - lo) / n as f64;
+        let gamma = (self.peak_enhancement as f64).max(1.0);
+        let wind = DVec2::new(
+            self.wind_direction[0] as f64,
+            self.wind_direction[1] as f64,
+        )
+        .try_normalize()
+        .unwrap_or(DVec2::X);
+        let mut rng = crate::school::rng::SplitMix64::new(self.seed);
+        let mut draws = Vec::with_capacity(n);
+        for i in 0..n {
+            let ln_omega = lo + band * (i as f64 + rng.next_f32() as f64);
+            let omega = ln_omega.exp();
+            let d_omega = omega * band; // dω = ω d(ln ω)
+            let variance = Self::jonswap_shape(omega, omega_peak, gamma) * d_omega;
+            // Box–Muller: a normal angle about the wind
+            let (u1, u2) = (rng.next_f32().max(1e-7) as f64, rng.next_f32() as f64);
+            let normal = (-2.0 * u1.ln()).sqrt() * (TAU * u2).cos();
+            let angle = normal * (self.spread_deg as f64).to_radians();
+            let dir = DVec2::from_angle(angle).rotate(wind);
+            draws.push((omega, variance, dir));
+        }
+        // scale so that 4 √(Σ A²/2) = H_s
+        let m0: f64 = draws.iter().map(|d| d.1).sum();
+        let target_m0 = (self.significant_height as f64 / 4.0).powi(2);
+        let scale = if m0 > 0.0 { target_m0 / m0 } else { 0.0 };
+        draws
+            .into_iter()
+            .map(|(omega, variance, dir)| {
+                let k = omega * omega / GRAVITY;
+                GerstnerWave {
+                    direction: [dir.x as f32, dir.y as f32],
+                    wavelength: (TAU / k) as f32,
+                    amplitude: (2.0 * variance * scale).sqrt() as f32,
+                    steepness: self.steepness.clamp(0.0, 1.0),
+                    speed: (omega / k) as f32,
+                }
+            })
+            .collect()
+    }
+}

@@ -393,3 +393,4 @@ fn slide_keys_work_without_their_release_and_are_not_left_held() {
         assert!(!h.ctx.input(|i| i.key_down(Key::ArrowRight)));
     }
 }
+

@@ -518,3 +518,117 @@ fn caustics_follow_the_render_scale_down_and_back() {
     );
     assert!(!within_tolerance(&full, &want), "2.7 s differs from 2.5 s");
 }
+
+/// Blue share of a pixel: b / (r + g + b).
+fn blueness(p: &image::Rgba<u8>) -> f64 {
+    p[2] as f64 / (p[0] as f64 + p[1] as f64 + p[2] as f64).max(1.0)
+}
+
+fn luma(p: &image::Rgba<u8>) -> f64 {
+    0.2126 * p[0] as f64 + 0.7152 * p[1] as f64 + 0.0722 * p[2] as f64
+}
+
+/// Points the camera from 60 m up towards (sin yaw, ·, cos yaw), `pitch_deg` up.
+fn look_from_high(h: &mut Headless, yaw_deg: f32, pitch_deg: f32) {
+    let c = &mut h.sim.camera;
+    // the orbit camera's yaw and pitch place the eye; it looks back at the target, so the
+    // eye goes the opposite way
+    c.target = glam::Vec3::new(0.0, 60.0, 0.0);
+    c.distance = 5.0;
+    c.yaw_deg = yaw_deg + 180.0;
+    c.pitch_deg = -pitch_deg;
+}
+
+/// Preetham's sky through the whole pipeline: looking at the sun, the sun disc is the
+/// brightest thing in the frame and at its centre; looking away from it, the sky is bluer
+/// high up than at the horizon; and the environment cube's roughest mip keeps the sky's mean
+/// (prefiltering only blurs it).
+#[test]
+fn the_sky_is_bluer_above_the_horizon_brightest_at_the_sun_and_the_env_mean_is_the_sky_mean() {
+    let mut h = headless(Path::new("shaders"));
+    let sun = glam::Vec3::from(h.sim.scene.sun.direction).normalize();
+    let sun_yaw = sun.x.atan2(sun.z).to_degrees();
+    let sun_pitch = sun.y.asin().to_degrees();
+    look_from_high(&mut h, sun_yaw, sun_pitch);
+    let img = h.render(SIZE).unwrap();
+    let (w, hgt) = img.dimensions();
+    let (mut best, mut at) = (0.0, (0, 0));
+    for (x, y, p) in img.enumerate_pixels() {
+        if luma(p) > best {
+            (best, at) = (luma(p), (x, y));
+        }
+    }
+    let off = ((at.0 as f64 - w as f64 / 2.0).hypot(at.1 as f64 - hgt as f64 / 2.0)) as u32;
+    assert!(off <= 4, "the brightest pixel {at:?} is {off} px from the sun at the centre");
+    assert!(best > 250.0, "the sun disc is white-hot: {best}");
+
+    // away from the sun, looking at the horizon
+    look_from_high(&mut h, sun_yaw + 180.0, 0.0);
+    let img = h.render(SIZE).unwrap();
+    let top = blueness(img.get_pixel(w / 2, 2));
+    let horizon = blueness(img.get_pixel(w / 2, hgt / 2 - 3));
+    eprintln!("blue share: {top:.3} high up, {horizon:.3} at the horizon");
+    assert!(top > horizon + 0.03, "{top} vs {horizon}");
+
+    // the env cube view: the sharp equator band against the roughest one (mip strip)
+    h.settings.debug_view = DebugView::EnvCube;
+    let img = h.render(GOLDEN_SIZE).unwrap();
+    let (w, hgt) = img.dimensions();
+    let cell = (w as f32 / 4.0).min(hgt as f32 / 3.6);
+    let strip_top = (3.0 * cell) as u32 + 1;
+    let band_mean = |y: u32| {
+        let x0 = ((w as f32 - 4.0 * cell) / 2.0) as u32;
+        let xs = x0 + 1..x0 + (4.0 * cell) as u32 - 1;
+        let n = xs.len() as f64;
+        xs.map(|x| luma(img.get_pixel(x, y))).sum::<f64>() / n
+    };
+    let sharp = band_mean(strip_top + 1);
+    let roughest = band_mean(hgt - 2);
+    eprintln!("env equator mean: {sharp:.1} sharp, {roughest:.1} roughest mip");
+    assert!(
+        (roughest - sharp).abs() < 0.15 * sharp,
+        "prefiltering changed the sky's mean: {sharp} → {roughest}"
+    );
+}
+
+/// The water reaches the horizon: in the normals view (the sky black, the water its normal's
+/// colour) every pixel below the horizon line is water, for a camera a few metres up looking
+/// level, and for one looking down at the default angle. (The old 80 m slab left a black band
+/// of several degrees under the horizon.)
+#[test]
+fn along_a_line_of_sight_through_the_horizon_every_pixel_below_it_is_water() {
+    let mut h = headless(Path::new("shaders"));
+    h.settings.debug_view = DebugView::Normals;
+    for (eye_height, pitch) in [(3.0f32, 0.0f32), (6.0, 12.0)] {
+        let c = &mut h.sim.camera;
+        c.target = glam::Vec3::new(0.0, eye_height, 0.0);
+        c.distance = 0.5;
+        c.yaw_deg = 30.0;
+        c.pitch_deg = 0.0;
+        // look down by `pitch`: the eye stays at about `eye_height`
+        c.pitch_deg = pitch;
+        let img = h.render(SIZE).unwrap();
+        let (w, hgt) = img.dimensions();
+        let fov = h.sim.camera.fov_deg.to_radians();
+        // the true horizon's row: `pitch` degrees above the centre
+        let horizon_row = hgt as f32 / 2.0
+            - (pitch.to_radians().tan() / (fov / 2.0).tan()) * hgt as f32 / 2.0;
+        let first = (horizon_row + 2.0).max(0.0) as u32;
+        let mut sky_below = 0;
+        for y in first..hgt {
+            for x in 0..w {
+                let p = img.get_pixel(x, y);
+                if p[0] < 8 && p[1] < 8 && p[2] < 8 {
+                    sky_below += 1;
+                }
+            }
+        }
+        assert_eq!(
+            sky_below, 0,
+            "eye {eye_height} m, pitch {pitch}°: {sky_below} sky pixels below the horizon row {horizon_row}"
+        );
+        // and the sky is there above it (the test can see the difference)
+        let above = img.get_pixel(w / 2, (horizon_row - 4.0).max(0.0) as u32);
+        assert!(above[0] < 8 && above[1] < 8 && above[2] < 8, "sky above: {above:?}");
+    }
+}

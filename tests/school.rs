@@ -318,7 +318,8 @@ fn brute_force_steering(s: &School, env: &Environment, i: usize) -> Vec3 {
     let p = s.params();
     let (pos, vel) = (s.position(i), s.velocity(i));
     let (mut count, mut v_sum, mut d_sum, mut sep) = (0.0f32, Vec3::ZERO, Vec3::ZERO, Vec3::ZERO);
-    for j in (0..s.len()).filter(|&j| j != i) {
+    let school = p.school_of(s.id(i));
+    for j in (0..s.len()).filter(|&j| j != i && p.school_of(s.id(j)) == school) {
         let d = s.position(j) - pos;
         let d2 = d.length_squared();
         if d2 > 0.0 && d2 < p.neighbour_radius * p.neighbour_radius {
@@ -335,6 +336,8 @@ fn brute_force_steering(s: &School, env: &Environment, i: usize) -> Vec3 {
         a += (v_sum / count - vel) * p.alignment_weight + d_sum / count * p.cohesion_weight;
     }
     let (lo, hi) = env.swim_box();
+    let (centre, _) = p.school_centre(school, s.time_secs(), (lo, hi));
+    a += ((centre - pos) * p.goal_weight).clamp_length_max(0.5 * p.max_accel);
     let m = p.bounds_margin;
     let into_lo = ((lo + Vec3::splat(m) - pos) / m).max(Vec3::ZERO);
     let into_hi = ((pos - (hi - Vec3::splat(m))) / m).max(Vec3::ZERO);
@@ -352,11 +355,14 @@ fn brute_force_steering(s: &School, env: &Environment, i: usize) -> Vec3 {
 fn vectorised_steering_equals_the_brute_force_boids_rule() {
     let mut env = Environment::new(tank());
     env.flee_point = Some(Vec3::new(1.0, -2.0, 0.5));
-    // dense enough that runs are longer than one SIMD chunk, with a few close pairs
+    // dense enough that runs are longer than one SIMD chunk, with a few close pairs; three
+    // schools that must not see each other, each pulled to its centre
     let params = SchoolParams {
         count: 1500,
         separation_radius: 0.5,
         max_accel: 1e3,
+        schools: 3,
+        goal_weight: 0.7,
         ..Default::default()
     };
     let mut s = School::new(&params, &env);
@@ -419,4 +425,109 @@ fn a_reversed_heading_turns_half_way_round_the_fish_own_up_axis() {
     // a NaN heading does not poison the frame
     let bad = transport(q, Vec3::NAN);
     assert!(bad.is_finite() && (bad.length() - 1.0).abs() < 1e-6);
+}
+
+/// Mean distance from each point to its nearest other point (brute force).
+fn mean_nearest_neighbour(points: &[Vec3]) -> f32 {
+    let total: f32 = points
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            points
+                .iter()
+                .enumerate()
+                .filter(|&(j, _)| j != i)
+                .map(|(_, q)| p.distance(*q))
+                .fold(f32::INFINITY, f32::min)
+        })
+        .sum();
+    total / points.len() as f32
+}
+
+/// The shipped scene's schools after 20 s: each a tight, aligned school, not a carpet.
+/// Clark–Evans ratio: the school's mean nearest-neighbour distance over that of the same number
+/// of fish spread uniformly through the swim box (measured, not the Poisson formula, so the
+/// box's edges count alike). Polarisation: |mean unit heading|.
+#[test]
+fn the_scene_schools_are_clustered_and_polarised_and_miss_the_seabed_and_rocks() {
+    use lectern::scene::{self, sim};
+    let scene = scene::load_scene(std::path::Path::new(scene::DEFAULT_SCENE)).unwrap();
+    let waves = scene.water.wave_sum();
+    let obstacles = sim::rock_obstacles(&scene);
+    let env = sim::environment(&scene, &waves, None, &obstacles);
+    let p = scene.school.clone();
+    assert!(p.school_count() >= 3, "several schools: {}", p.school_count());
+    let mut s = School::new(&p, &env);
+    // the rocks' real meshes: the farthest vertex of each from its centre
+    let rocks: Vec<(Vec3, f32)> = scene
+        .objects
+        .iter()
+        .filter_map(|o| match o {
+            scene::model::Object::Rock {
+                position,
+                radius,
+                seed,
+                ..
+            } => {
+                let m = lectern::render::mesh::rock(*radius, *seed);
+                let reach = m.positions.iter().map(|v| v.length()).fold(0.0, f32::max);
+                Some((Vec3::from(*position), reach))
+            }
+            _ => None,
+        })
+        .collect();
+    assert!(!rocks.is_empty());
+    let seabed_top = env.swim_box().0.y;
+    let dt = scene.simulation.dt_secs;
+    for step in 0..1200 {
+        s.step(dt, &env);
+        if step % 20 == 0 {
+            for i in 0..s.len() {
+                let x = s.position(i);
+                assert!(x.y >= seabed_top - 1e-4, "step {step}: fish {i} in the seabed at {x}");
+                for &(c, reach) in &rocks {
+                    assert!(
+                        x.distance(c) > reach,
+                        "step {step}: fish {i} at {x} inside the rock at {c} (reach {reach})"
+                    );
+                }
+            }
+        }
+    }
+    let (lo, hi) = env.swim_box();
+    for k in 0..p.school_count() {
+        let members: Vec<usize> = (0..s.len()).filter(|&i| p.school_of(s.id(i)) == k).collect();
+        let points: Vec<Vec3> = members.iter().map(|&i| s.position(i)).collect();
+        let mut g = SplitMix64::new(99 + k as u64);
+        let uniform: Vec<Vec3> = (0..points.len())
+            .map(|_| Vec3::new(g.range(lo.x, hi.x), g.range(lo.y, hi.y), g.range(lo.z, hi.z)))
+            .collect();
+        let ratio = mean_nearest_neighbour(&points) / mean_nearest_neighbour(&uniform);
+        let heading: Vec3 = members
+            .iter()
+            .map(|&i| s.velocity(i).normalize())
+            .sum::<Vec3>()
+            / members.len() as f32;
+        let polarisation = heading.length();
+        eprintln!(
+            "school {k}: {} fish, Clark–Evans ratio {ratio:.3}, polarisation {polarisation:.3}",
+            members.len()
+        );
+        assert!(ratio < 0.5, "school {k}: Clark–Evans ratio {ratio}");
+        assert!(polarisation > 0.8, "school {k}: polarisation {polarisation}");
+    }
+}
+
+/// The same count scattered uniformly with random headings (the classic boids' start) is
+/// neither: the measure above can fail.
+#[test]
+fn a_scattered_school_fails_the_school_measures() {
+    let env = Environment::new(tank());
+    let p = SchoolParams {
+        count: 300,
+        ..Default::default()
+    };
+    let s = School::new(&p, &env);
+    let heading: Vec3 = (0..s.len()).map(|i| s.velocity(i).normalize()).sum::<Vec3>() / s.len() as f32;
+    assert!(heading.length() < 0.3, "random headings: {}", heading.length());
 }

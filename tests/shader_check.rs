@@ -98,8 +98,8 @@ fn a_changed_vertex_input_is_reported_at_its_location() {
     let water = dir.path().join("water.wgsl");
     let line = edit(
         &water,
-        "fn vs_main(@location(0) rest_xz: vec2f)",
-        "fn vs_main(@location(5) rest_xz: vec2f)",
+        "fn vs_main(@location(0) grid_ndc: vec2f)",
+        "fn vs_main(@location(5) grid_ndc: vec2f)",
     );
     let ds = check_shader_file(&water);
     assert!(at(&ds, &water, line), "{ds:?}");

@@ -2,7 +2,7 @@
 //! the analytic normal matches finite differences, a calm sea is flat.
 
 use glam::{DVec2, DVec3};
-use lectern::waves::{GerstnerWave, WaveSum};
+use lectern::waves::{GRAVITY, GerstnerWave, WaveSpectrum, WaveSum};
 
 fn sea() -> WaveSum {
     WaveSum::new(
@@ -123,4 +123,54 @@ fn calm_water_is_flat() {
         0.0,
     );
     assert!(junk.height(DVec2::new(1.0, 1.0), 1.0).is_finite());
+}
+
+/// The JONSWAP wind sea: seeded (same file, same sea), its significant height the one asked
+/// for, deep-water speeds, the biggest waves near the peak wavelength, directions spread about
+/// the wind, and never looping crests (Σ Q k A < 1, which the height iteration relies on).
+#[test]
+fn the_spectrum_is_seeded_scaled_to_its_height_and_spread_about_the_wind() {
+    let spec = WaveSpectrum::default();
+    let waves = spec.waves();
+    assert_eq!(waves.len(), spec.count as usize);
+    assert_eq!(waves, spec.waves(), "the same seed gives the same sea");
+    let other = WaveSpectrum {
+        seed: spec.seed + 1,
+        ..spec.clone()
+    };
+    assert_ne!(waves, other.waves(), "another seed, another sea");
+    let m0: f64 = waves.iter().map(|w| (w.amplitude as f64).powi(2) / 2.0).sum();
+    let hs = 4.0 * m0.sqrt();
+    assert!(
+        (hs - spec.significant_height as f64).abs() < 1e-4,
+        "H_s {hs} for {}",
+        spec.significant_height
+    );
+    for w in &waves {
+        let k = std::f64::consts::TAU / w.wavelength as f64;
+        let c = (GRAVITY / k).sqrt();
+        assert!((w.speed as f64 - c).abs() < 1e-3 * c, "{w:?}: deep water c = {c}");
+    }
+    let biggest = waves
+        .iter()
+        .max_by(|a, b| a.amplitude.total_cmp(&b.amplitude))
+        .unwrap();
+    let ratio = biggest.wavelength / spec.peak_wavelength;
+    assert!((0.6..=1.6).contains(&ratio), "the biggest wave is {ratio}× the peak");
+    // shorter than the peak: a broad range of lengths (an irregular sea, not a lattice)
+    let shortest = waves.iter().map(|w| w.wavelength).fold(f32::INFINITY, f32::min);
+    assert!(shortest < 0.15 * spec.peak_wavelength, "shortest {shortest}");
+    let wind = glam::Vec2::from(spec.wind_direction).normalize();
+    let mean_cos: f32 =
+        waves.iter().map(|w| glam::Vec2::from(w.direction).normalize().dot(wind)).sum::<f32>()
+            / waves.len() as f32;
+    assert!(mean_cos > 0.7 && mean_cos < 0.99, "spread about the wind: mean cos {mean_cos}");
+    let sum = WaveSum::new(waves, 0.0);
+    assert!(sum.horizontal_steepness() < 1.0);
+    // and the sum is the same Gerstner function: heights at world points sit on the surface
+    let p = DVec2::new(1.3, -0.4);
+    let h = sum.height(p, 2.0);
+    let rest = sum.rest_point_under(p, 2.0);
+    let on = sum.surface_point(rest, 2.0);
+    assert!((DVec2::new(on.x, on.z) - p).length() < 1e-6 && (on.y - h).abs() < 1e-9);
 }

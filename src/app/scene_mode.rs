@@ -43,7 +43,8 @@ pub struct SceneMode {
     pub(super) quality: QualityController,
     pub paused: bool,
     pub(super) step_once: bool,
-    pub(super) show_frame_time: bool,
+    /// the frame-time line over the picture (off: the audience does not see it)
+    pub show_frame_time: bool,
     /// the teaching panel as a floating window over the scene (a "controls" button opens it);
     /// a presenter view that shows the panel on its own screen sets `controls_button` false
     pub controls_open: bool,
@@ -65,11 +66,9 @@ impl SceneMode {
         scene_path: &Path,
         wake: impl Fn() + Send + 'static,
     ) -> Result<Self> {
-        let root = scene_path
-            .parent()
-            .and_then(Path::parent)
-            .unwrap_or(Path::new(""));
-        let shader_dir = root.join(crate::render::SHADER_DIR);
+        let shader_dir = crate::bundled::shader_folder_for_scene(scene_path)
+            .map_err(anyhow::Error::msg)?
+            .dir;
         let scene_file = LiveFile::open(scene_path, scene::parse_scene);
         let scene = match (scene_file.value(), scene_file.error()) {
             (Some(s), _) => s.clone(),
@@ -98,7 +97,8 @@ impl SceneMode {
             settings: RenderSettings::default(),
             paused: false,
             step_once: false,
-            show_frame_time: true,
+            // off the audience's picture: the presenter panel and the controls (`C`) show it
+            show_frame_time: false,
             controls_open: false,
             controls_button: true,
             selected_material: 0,

@@ -76,7 +76,6 @@ impl SceneMode {
         }
         ui.separator();
         ui.heading("Waves");
-        ui.add(egui::Slider::new(&mut sc.water.size, 4.0..=200.0).text("water patch (m)"));
         ui.add(egui::Slider::new(&mut sc.water.resolution, 8..=512).text("grid vertices per side"));
         for (i, w) in sc.water.waves.iter_mut().enumerate() {
             ui.collapsing(format!("wave {}", i + 1), |ui| {
@@ -84,6 +83,14 @@ impl SceneMode {
                 ui.add(egui::Slider::new(&mut w.wavelength, 0.2..=30.0).text("wavelength (m)"));
                 ui.add(egui::Slider::new(&mut w.steepness, 0.0..=1.0).text("steepness Q"));
                 ui.add(egui::Slider::new(&mut w.speed, 0.0..=10.0).text("speed (m/s)"));
+            });
+        }
+        if let Some(sp) = &mut sc.water.spectrum {
+            ui.collapsing("wind sea (JONSWAP)", |ui| {
+                ui.add(egui::Slider::new(&mut sp.significant_height, 0.0..=1.5).text("H_s (m)"));
+                ui.add(egui::Slider::new(&mut sp.peak_wavelength, 1.0..=40.0).text("peak wavelength (m)"));
+                ui.add(egui::Slider::new(&mut sp.spread_deg, 0.0..=90.0).text("spread (°)"));
+                ui.add(egui::Slider::new(&mut sp.steepness, 0.0..=1.0).text("steepness Q"));
             });
         }
         let errors = self.errors();
@@ -169,6 +176,8 @@ impl SceneMode {
         ui.add(egui::Slider::new(&mut p.separation_weight, 0.0..=5.0).text("separation"));
         ui.add(egui::Slider::new(&mut p.alignment_weight, 0.0..=5.0).text("alignment"));
         ui.add(egui::Slider::new(&mut p.cohesion_weight, 0.0..=5.0).text("cohesion"));
+        ui.add(egui::Slider::new(&mut p.goal_weight, 0.0..=3.0).text("pull to the school's centre (1/s²)"));
+        ui.add(egui::Slider::new(&mut p.schools, 1..=crate::school::MAX_SCHOOLS).text("schools"));
         ui.add(egui::Slider::new(&mut p.flee_radius, 0.0..=10.0).text("flee radius (m)"));
         let w = self.sim.scene.simulation.school_half_width;
         let mut on = self.sim.flee_point.is_some();

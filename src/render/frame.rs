@@ -186,7 +186,10 @@ pub struct Globals {
     pub caustics_half_extent_m: f32,
     /// below the water level: the floor the caustics map is focused on, metres
     pub caustics_depth_m: f32,
-    pub _pad: [f32; 2],
+    /// the angle one pixel of the HDR target subtends, radians (waves shorter than a few
+    /// pixels fade out)
+    pub rad_per_px: f32,
+    pub _pad: f32,
     pub waves: [WaveGpu; MAX_WAVES],
 }
 
@@ -221,9 +224,10 @@ fn on(b: bool) -> u32 {
 }
 
 pub fn waves_gpu(scene: &Scene) -> [WaveGpu; MAX_WAVES] {
-    let n_waves = scene.water.waves.len().min(MAX_WAVES);
+    let all = scene.water.all_waves();
+    let n_waves = all.len().min(MAX_WAVES);
     let mut waves = [WaveGpu::zeroed(); MAX_WAVES];
-    for (slot, w) in waves.iter_mut().zip(&scene.water.waves) {
+    for (slot, w) in waves.iter_mut().zip(&all) {
         let d = glam::Vec2::from(w.direction).normalize_or(glam::Vec2::X);
         let k = std::f32::consts::TAU / w.wavelength;
         *slot = WaveGpu {
@@ -270,7 +274,8 @@ pub fn globals(
         scatter_color: w.scatter_color,
         near_m: NEAR_M,
         water_level_m: w.level,
-        wave_count: w.waves.len().min(MAX_WAVES) as u32,
+        wave_count: (w.waves.len() + w.spectrum.as_ref().map_or(0, |s| s.count as usize))
+            .min(MAX_WAVES) as u32,
         env_mip_count: env_mips as f32,
         debug_view: settings.debug_view.code(),
         viewport_size_px: [size_px.0 as f32, size_px.1 as f32],
@@ -282,7 +287,8 @@ pub fn globals(
         caustics_on: on(settings.caustics),
         caustics_half_extent_m: super::caustics::half_extent_m(scene),
         caustics_depth_m: super::caustics::focus_depth_m(scene),
-        _pad: [0.0; 2],
+        rad_per_px: snap.camera.fov_y_rad / size_px.1.max(1) as f32,
+        _pad: 0.0,
         waves: waves_gpu(scene),
     }
 }
@@ -373,6 +379,7 @@ mod tests {
                 "caustics_depth_m",
                 std::mem::offset_of!(Globals, caustics_depth_m),
             ),
+            ("rad_per_px", std::mem::offset_of!(Globals, rad_per_px)),
             ("_pad", std::mem::offset_of!(Globals, _pad)),
             ("waves", std::mem::offset_of!(Globals, waves)),
         ];

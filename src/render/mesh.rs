@@ -330,22 +330,21 @@ pub fn rock(radius: f32, seed: u32) -> MeshData {
     m
 }
 
-/// The water grid: only rest (x, z) positions (the vertex shader displaces them), its indices
-/// and its coarse indices (every [`COARSE_GRID_STEP`]-th row and column).
-pub fn water_grid(size: f32, resolution: u32) -> (Vec<[f32; 2]>, Vec<u32>, Vec<u32>) {
+/// How far past the screen's edges the projected water grid reaches (in ndc): the waves
+/// displace vertices sideways and up, and the grid must still cover the screen's corners.
+pub const WATER_GRID_MARGIN: f32 = 0.15;
+
+/// The projected water grid (Johanson 2004): screen positions in ndc, −1 − margin ..
+/// 1 + margin each way (the vertex shader meets each one's view ray with the water plane), its
+/// indices and its coarse indices (every [`COARSE_GRID_STEP`]-th row and column).
+pub fn water_grid(resolution: u32) -> (Vec<[f32; 2]>, Vec<u32>, Vec<u32>) {
     let n = resolution.max(2);
+    let reach = 1.0 + WATER_GRID_MARGIN;
     let mut v = Vec::with_capacity(((n + 1) * (n + 1)) as usize);
     for j in 0..=n {
         for i in 0..=n {
-            // denser near the centre, where the camera looks
-            let f = |t: f32| {
-                let c = t * 2.0 - 1.0;
-                c * c.abs() * 0.6 + c * 0.4
-            };
-            v.push([
-                f(i as f32 / n as f32) * size * 0.5,
-                f(j as f32 / n as f32) * size * 0.5,
-            ]);
+            let at = |t: u32| (t as f32 / n as f32 * 2.0 - 1.0) * reach;
+            v.push([at(i), at(j)]);
         }
     }
     (

@@ -53,7 +53,7 @@ pub struct SceneResources {
     pub water_indices_coarse: wgpu::Buffer,
     pub water_index_count_coarse: u32,
     /// (size in metres, vertices per side) the water grid was built for
-    water_grid_for: (f32, u32),
+    water_grid_for: u32,
 }
 
 fn index_buffer(device: &wgpu::Device, indices: &[u32]) -> wgpu::Buffer {
@@ -215,7 +215,7 @@ impl SceneResources {
         let fish_material = scene
             .material_index("fish_skin")
             .unwrap_or(scene.materials.len() - 1);
-        let (grid, indices, coarse) = mesh::water_grid(scene.water.size, scene.water.resolution);
+        let (grid, indices, coarse) = mesh::water_grid(scene.water.resolution);
         let fish_capacity = scene.school.count.max(1);
         Self {
             materials,
@@ -236,17 +236,17 @@ impl SceneResources {
             water_index_count: indices.len() as u32,
             water_indices_coarse: index_buffer(device, &coarse),
             water_index_count_coarse: coarse.len() as u32,
-            water_grid_for: (scene.water.size, scene.water.resolution),
+            water_grid_for: scene.water.resolution,
         }
     }
 
-    /// Rebuilds the water grid when its size or resolution was changed live (sliders).
+    /// Rebuilds the water grid when its resolution was changed live (sliders).
     fn ensure_water_grid(&mut self, device: &wgpu::Device, scene: &Scene) {
-        let want = (scene.water.size, scene.water.resolution.clamp(2, 1024));
+        let want = scene.water.resolution.clamp(2, 1024);
         if want == self.water_grid_for {
             return;
         }
-        let (grid, indices, coarse) = mesh::water_grid(want.0, want.1);
+        let (grid, indices, coarse) = mesh::water_grid(want);
         self.water_vertices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("water grid"),
             contents: bytemuck::cast_slice(&grid),

@@ -1,4 +1,4 @@
-//! The procedural sky (sky.wgsl) rendered into a cube map and drawn as the background
+//! The analytic daylight sky (sky.wgsl, Preetham, Shirley & Smits 1999) rendered into a cube map and drawn as the background
 //! (environment mapping: Blinn & Newell 1976; cube maps: Greene 1986), and its
 //! roughness-blurred mips (prefilter.wgsl; the split-sum prefiltering of Karis 2013). The cube
 //! is made when the sky or the sun changes, never per frame.
@@ -130,11 +130,12 @@ impl SkyKey {
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
 pub struct SkyParams {
-    zenith: [f32; 4],
-    horizon: [f32; 4],
-    ground: [f32; 4],
     sun_dir: [f32; 4],
     sun_color: [f32; 4],
+    ground: [f32; 4],
+    turbidity: f32,
+    radiance_per_kcd: f32,
+    _pad: [f32; 2],
     face: [u32; 4],
 }
 
@@ -223,16 +224,12 @@ pub fn build(
     let mut enc = device.create_command_encoder(&Default::default());
     for face in 0..6 {
         let params = SkyParams {
-            zenith: [k.zenith_color[0], k.zenith_color[1], k.zenith_color[2], 0.0],
-            horizon: [
-                k.horizon_color[0],
-                k.horizon_color[1],
-                k.horizon_color[2],
-                0.0,
-            ],
-            ground: [k.ground_color[0], k.ground_color[1], k.ground_color[2], 0.0],
             sun_dir: [sun.x, sun.y, sun.z, k.sun_size_deg.to_radians().cos()],
             sun_color: [sun_rgb.x, sun_rgb.y, sun_rgb.z, 0.0],
+            ground: [k.ground_color[0], k.ground_color[1], k.ground_color[2], 0.0],
+            turbidity: k.turbidity,
+            radiance_per_kcd: k.radiance_per_kcd,
+            _pad: [0.0; 2],
             face: [face, 0, 0, 0],
         };
         let buf = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {

@@ -1,6 +1,6 @@
 //! The frame's own render targets: the HDR colour and depth the scene is drawn into (at the
 //! render size, which dynamic resolution may make smaller than the display), the copy of the
-//! opaque colour the water refracts, and the bind groups that read them.
+//! opaque colour the water refracts (its alpha the distance from the eye), and the bind groups that read them.
 
 use super::layouts::Layouts;
 use super::pipeline::{DEPTH_FORMAT, HDR_FORMAT};
@@ -95,7 +95,7 @@ impl Targets {
             "depth",
             size,
             DEPTH_FORMAT,
-            U::RENDER_ATTACHMENT | U::TEXTURE_BINDING,
+            U::RENDER_ATTACHMENT,
         );
         let scene_color = texture_2d(
             device,
@@ -112,8 +112,7 @@ impl Targets {
             layout: &layouts.water_inputs.layout,
             entries: &[
                 entry(0, wgpu::BindingResource::TextureView(&scene_view)),
-                entry(1, wgpu::BindingResource::TextureView(&depth_view)),
-                entry(2, wgpu::BindingResource::Sampler(linear_clamp)),
+                entry(1, wgpu::BindingResource::Sampler(linear_clamp)),
             ],
         });
         let tonemap = device.create_bind_group(&wgpu::BindGroupDescriptor {

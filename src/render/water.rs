@@ -1,26 +1,28 @@
-//! The sea surface (water.wgsl): a flat grid displaced in the vertex shader by the Gerstner sum
-//! (Finch 2004, GPU Gems 1 ch. 1), Fresnel (Schlick 1994) between the reflected sky and the
-//! refracted opaque image, absorbed along the path through the water (Beer–Lambert). It reads
-//! a copy of the opaque colour and the opaque depth (its inputs bind group, defined here).
+//! The sea surface (water.wgsl): a projected grid (Johanson 2004) reaching the horizon,
+//! displaced in the vertex shader by the Gerstner sum (Finch 2004, GPU Gems 1 ch. 1), Fresnel
+//! (Schlick 1994) between the reflected sky and the refracted opaque image, absorbed and
+//! in-scattered along the path through the water (Beer–Lambert); Snell's window from below.
+//! It reads a copy of the opaque colour whose alpha is the distance from the eye (its inputs
+//! bind group, defined here): never the depth texture it tests against, which WebGL2 and GLES
+//! cannot sample while it is attached.
 
 use super::layouts::{FLOAT, Layout, sampler, texture};
 use super::pipeline::{Ctx, HDR_FORMAT, NO_BIAS, PerShadowFilter, PipelineDesc, Technique};
 
-/// Group 1 of the water: the opaque colour (a copy), the opaque depth, a sampler.
+/// Group 1 of the water: the opaque colour (a copy; alpha the distance from the eye), a
+/// sampler.
 pub fn inputs_layout(device: &wgpu::Device) -> Layout {
-    use wgpu::{TextureSampleType as T, TextureViewDimension as D};
     Layout::new(
         device,
         "water inputs",
         &[
-            texture(0, D::D2, FLOAT),
-            texture(1, D::D2, T::Depth),
-            sampler(2, wgpu::SamplerBindingType::Filtering),
+            texture(0, wgpu::TextureViewDimension::D2, FLOAT),
+            sampler(1, wgpu::SamplerBindingType::Filtering),
         ],
     )
 }
 
-/// The grid's vertices: rest (x, z) positions only.
+/// The grid's vertices: screen positions (ndc) only.
 pub fn vertex_layout() -> wgpu::VertexBufferLayout<'static> {
     const ATTR: [wgpu::VertexAttribute; 1] = wgpu::vertex_attr_array![0 => Float32x2];
     wgpu::VertexBufferLayout {
@@ -49,7 +51,7 @@ impl Technique for WaterPipeline {
                     fs: Some("fs_main"),
                     buffers: &[Some(vertex_layout())],
                     color: Some(HDR_FORMAT),
-                    // reads the opaque depth as a texture in the same pass: test, never write
+                    // tests against the opaque depth, never writes it
                     depth: Some((false, wgpu::CompareFunction::Less, NO_BIAS)),
                     cull: None,
                 },

@@ -114,24 +114,29 @@ fn validate(s: &Scene) -> Result<(), Invalid> {
         "sky.sun_size_deg",
         || format!("sky.sun_size_deg = {} must be in 0.05..=20", k.sun_size_deg),
     )?;
+    check(in_range(k.turbidity, 1.7, 10.0), "sky.turbidity", || {
+        format!(
+            "sky.turbidity = {} must be in 1.7..=10 (Preetham's model)",
+            k.turbidity
+        )
+    })?;
     check(
-        finite(&k.zenith_color) && finite(&k.horizon_color) && finite(&k.ground_color),
-        first_bad(
-            "sky",
-            &[
-                ("zenith_color", &k.zenith_color),
-                ("horizon_color", &k.horizon_color),
-                ("ground_color", &k.ground_color),
-            ],
-            f32::is_finite,
-        ),
-        || "sky colours must be finite".into(),
+        in_range(k.radiance_per_kcd, 0.0, 100.0),
+        "sky.radiance_per_kcd",
+        || {
+            format!(
+                "sky.radiance_per_kcd = {} must be in 0..=100",
+                k.radiance_per_kcd
+            )
+        },
+    )?;
+    check(
+        finite(&k.ground_color) && k.ground_color.iter().all(|&x| x >= 0.0),
+        "sky.ground_color",
+        || "sky.ground_color must be finite and non-negative".into(),
     )?;
 
     let w = &s.water;
-    check(in_range(w.size, 1.0, 1e4), "water.size", || {
-        format!("water.size = {} must be in 1..=10000 m", w.size)
-    })?;
     check(
         (2..=1024).contains(&w.resolution),
         "water.resolution",
@@ -147,10 +152,63 @@ fn validate(s: &Scene) -> Result<(), Invalid> {
             )
         },
     )?;
-    check(w.waves.len() <= MAX_WAVES, "water.waves", || {
+    if let Some(sp) = &w.spectrum {
+        check(
+            (1..=MAX_WAVES as u32).contains(&sp.count),
+            "water.spectrum.count",
+            || format!("water.spectrum.count = {} must be in 1..={MAX_WAVES}", sp.count),
+        )?;
+        check(
+            in_range(sp.peak_wavelength, 0.1, 1e3),
+            "water.spectrum.peak_wavelength",
+            || {
+                format!(
+                    "water.spectrum.peak_wavelength = {} must be in 0.1..=1000 m",
+                    sp.peak_wavelength
+                )
+            },
+        )?;
+        check(
+            in_range(sp.significant_height, 0.0, 20.0),
+            "water.spectrum.significant_height",
+            || {
+                format!(
+                    "water.spectrum.significant_height = {} must be in 0..=20 m",
+                    sp.significant_height
+                )
+            },
+        )?;
+        let dl = sp.wind_direction[0].hypot(sp.wind_direction[1]);
+        check(
+            dl.is_finite() && dl > 1e-6,
+            "water.spectrum.wind_direction",
+            || "water.spectrum.wind_direction must be a non-zero 2D vector".into(),
+        )?;
+        check(
+            in_range(sp.spread_deg, 0.0, 180.0),
+            "water.spectrum.spread_deg",
+            || format!("water.spectrum.spread_deg = {} must be in 0..=180", sp.spread_deg),
+        )?;
+        check(
+            in_range(sp.peak_enhancement, 1.0, 10.0),
+            "water.spectrum.peak_enhancement",
+            || {
+                format!(
+                    "water.spectrum.peak_enhancement = {} must be in 1..=10",
+                    sp.peak_enhancement
+                )
+            },
+        )?;
+        check(
+            in_range(sp.steepness, 0.0, 1.0),
+            "water.spectrum.steepness",
+            || format!("water.spectrum.steepness = {} must be in 0..=1", sp.steepness),
+        )?;
+    }
+    let total_waves = w.waves.len() + w.spectrum.as_ref().map_or(0, |s| s.count as usize);
+    check(total_waves <= MAX_WAVES, "water.waves", || {
         format!(
-            "water.waves has {} waves; at most {MAX_WAVES} are supported",
-            w.waves.len()
+            "water.waves and water.spectrum.count make {total_waves} waves; at most {MAX_WAVES} are supported"
         )
     })?;
     for (i, wave) in w.waves.iter().enumerate() {
@@ -395,6 +453,23 @@ fn validate(s: &Scene) -> Result<(), Invalid> {
             )
         },
     )?;
+    check(
+        (1..=crate::school::MAX_SCHOOLS).contains(&f.schools),
+        "school.schools",
+        || {
+            format!(
+                "school.schools = {} must be in 1..={}",
+                f.schools,
+                crate::school::MAX_SCHOOLS
+            )
+        },
+    )?;
+    check(in_range(f.goal_weight, 0.0, 100.0), "school.goal_weight", || {
+        format!("school.goal_weight = {} must be in 0..=100 per s²", f.goal_weight)
+    })?;
+    check(in_range(f.spawn_radius, 0.0, 1e3), "school.spawn_radius", || {
+        format!("school.spawn_radius = {} must be in 0..=1000 m", f.spawn_radius)
+    })?;
     let radii = [f.separation_radius, f.neighbour_radius, f.flee_radius];
     check(
         radii.iter().all(|&r| in_range(r, 0.0, 1e3)),

@@ -7,10 +7,11 @@ use serde::{Deserialize, Serialize};
 
 use crate::rigid::Integrator;
 use crate::school::SchoolParams;
-use crate::waves::GerstnerWave;
+use crate::waves::{GerstnerWave, WaveSpectrum, WaveSum};
 
-/// The most waves the water shader sums (its uniform array has this many slots).
-pub const MAX_WAVES: usize = 8;
+/// The most waves the water shader sums (its uniform array has this many slots): the
+/// explicit `waves` and the spectrum's together.
+pub const MAX_WAVES: usize = 32;
 /// The most fish the renderer draws; the instance buffer is sized from this at most.
 pub const MAX_FISH: usize = 20_000;
 pub const MAX_OBJECTS: usize = 256;
@@ -37,9 +38,12 @@ pub struct Scene {
 /// gets. (The school's own defaults in `crate::school` are for its tests and widgets.)
 pub fn default_school() -> SchoolParams {
     SchoolParams {
-        count: 10_000,
+        count: 1500,
         max_speed: 1.6,
-        fish_scale: 0.3,
+        fish_scale: 0.45,
+        schools: 6,
+        goal_weight: 0.5,
+        spawn_radius: 1.5,
         ..SchoolParams::default()
     }
 }
@@ -126,8 +130,12 @@ pub struct Sun {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct Sky {
-    pub zenith_color: [f32; 3],
-    pub horizon_color: [f32; 3],
+    /// Preetham's turbidity T: 2 a clear blue sky, 10 a hazy one (valid 1.7..=10)
+    pub turbidity: f32,
+    /// scene radiance per kcd/m² of the model's luminance (sets the sky's brightness against
+    /// the sun's `intensity`)
+    pub radiance_per_kcd: f32,
+    /// linear RGB below the horizon, in the environment cube
     pub ground_color: [f32; 3],
     /// angular radius of the sun disc, degrees
     pub sun_size_deg: f32,
@@ -140,9 +148,9 @@ pub struct Sky {
 impl Default for Sky {
     fn default() -> Self {
         Self {
-            zenith_color: [0.12, 0.3, 0.8],
-            horizon_color: [0.7, 0.82, 0.98],
-            ground_color: [0.2, 0.22, 0.25],
+            turbidity: 2.2,
+            radiance_per_kcd: 0.04,
+            ground_color: [0.03, 0.06, 0.08],
             sun_size_deg: 1.2,
             sun_disc_intensity: 60.0,
             cube_size: 128,
@@ -155,15 +163,35 @@ impl Default for Sky {
 pub struct Water {
     /// height of the still surface, metres
     pub level: f32,
-    /// side of the square water patch, metres
-    pub size: f32,
-    /// grid vertices per side
+    /// vertices per side of the projected grid (a grid over the screen, met with the water
+    /// plane: the water reaches the horizon at any resolution)
     pub resolution: u32,
     /// Beer–Lambert absorption per metre of water, per RGB channel
     pub absorption: [f32; 3],
     /// colour of light scattered back by deep water (linear RGB)
     pub scatter_color: [f32; 3],
+    /// waves placed by hand
+    #[serde(default)]
     pub waves: Vec<GerstnerWave>,
+    /// and a wind sea drawn from a spectrum, after them
+    #[serde(default)]
+    pub spectrum: Option<WaveSpectrum>,
+}
+
+impl Water {
+    /// Every wave the surface sums: the hand-placed ones, then the spectrum's.
+    pub fn all_waves(&self) -> Vec<GerstnerWave> {
+        let mut w = self.waves.clone();
+        if let Some(s) = &self.spectrum {
+            w.extend(s.waves());
+        }
+        w
+    }
+
+    /// The surface the simulation floats bodies on and the shader draws (its CPU twin).
+    pub fn wave_sum(&self) -> WaveSum {
+        WaveSum::new(self.all_waves(), self.level)
+    }
 }
 
 /// A procedurally generated normal map pattern.

@@ -29,6 +29,8 @@ pub struct SceneSim {
     /// real time not yet stepped, seconds
     pending_secs: f64,
     waves: WaveSum,
+    /// the rocks' bounding spheres, which the fish keep out of
+    obstacles: Vec<(Vec3, f32)>,
     school: School,
     bodies: Vec<FloatingBody>,
     fish: Vec<FishInstance>,
@@ -51,7 +53,11 @@ pub struct BodyReadout {
 impl SceneSim {
     pub fn new(scene: Scene) -> Self {
         let waves = wave_sum(&scene);
-        let school = School::new(&scene.school, &environment(&scene, &waves, None));
+        let obstacles = rock_obstacles(&scene);
+        let school = School::new(
+            &scene.school,
+            &environment(&scene, &waves, None, &obstacles),
+        );
         let mut sim = Self {
             camera: OrbitCamera::from_scene(&scene.camera),
             flee_point: None,
@@ -61,6 +67,7 @@ impl SceneSim {
             fish: Vec::new(),
             school_every: 1,
             waves,
+            obstacles,
             school,
             scene,
         };
@@ -106,9 +113,10 @@ impl SceneSim {
     /// Back to t = 0: fish and bodies respawn from the scene (camera kept).
     pub fn restart(&mut self) {
         self.waves = wave_sum(&self.scene);
+        self.obstacles = rock_obstacles(&self.scene);
         self.school = School::new(
             &self.scene.school,
-            &environment(&self.scene, &self.waves, None),
+            &environment(&self.scene, &self.waves, None, &self.obstacles),
         );
         self.bodies = make_bodies(&self.scene);
         self.steps = 0;
@@ -152,7 +160,7 @@ impl SceneSim {
     /// picked up here.
     fn tick(&mut self) {
         self.waves = wave_sum(&self.scene);
-        let env = environment(&self.scene, &self.waves, self.flee_point);
+        let env = environment(&self.scene, &self.waves, self.flee_point, &self.obstacles);
         if self.school.params() != &self.scene.school {
             self.school.set_params(&self.scene.school, &env);
         }
@@ -190,7 +198,8 @@ impl SceneSim {
         // keep the clock when the step changes: same time, counted in the new steps
         self.steps = (time / self.dt_secs()).round() as u64;
         self.waves = wave_sum(&self.scene);
-        let env = environment(&self.scene, &self.waves, self.flee_point);
+        self.obstacles = rock_obstacles(&self.scene);
+        let env = environment(&self.scene, &self.waves, self.flee_point, &self.obstacles);
         self.school.set_params(&self.scene.school, &env);
         if rebuild {
             self.bodies = make_bodies(&self.scene);
@@ -260,7 +269,7 @@ impl SceneSim {
 }
 
 fn wave_sum(scene: &Scene) -> WaveSum {
-    WaveSum::new(scene.water.waves.clone(), scene.water.level)
+    scene.water.wave_sum()
 }
 
 fn make_bodies(scene: &Scene) -> Vec<FloatingBody> {
@@ -278,6 +287,7 @@ pub fn environment<'a>(
     scene: &Scene,
     waves: &'a WaveSum,
     flee_point: Option<Vec3>,
+    obstacles: &'a [(Vec3, f32)],
 ) -> Environment<'a> {
     let w = scene.simulation.school_half_width;
     let seabed = scene
@@ -297,5 +307,25 @@ pub fn environment<'a>(
         surface: Some(waves),
         seabed_height: seabed,
         flee_point,
+        obstacles,
     }
+}
+
+/// How far a rock's lumps reach, in units of its radius (`render::mesh::rock` adds up to
+/// seven lumps of at most 0.15 each; a test checks the shipped rocks against this bound).
+pub const ROCK_BOUND: f32 = 1.35;
+
+/// The spheres the fish keep out of: each rock's bound, plus a fish's length.
+pub fn rock_obstacles(scene: &Scene) -> Vec<(Vec3, f32)> {
+    let fish = scene.school.fish_scale.max(0.0);
+    scene
+        .objects
+        .iter()
+        .filter_map(|o| match o {
+            Object::Rock {
+                position, radius, ..
+            } => Some((Vec3::from(*position), radius * ROCK_BOUND + fish)),
+            _ => None,
+        })
+        .collect()
 }

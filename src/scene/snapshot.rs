@@ -45,7 +45,8 @@ impl CameraPose {
 }
 
 pub const NEAR_M: f32 = 0.05;
-pub const FAR_M: f32 = 300.0;
+/// Far enough that the water's projected grid ends a pixel below the horizon.
+pub const FAR_M: f32 = 2000.0;
 
 /// Pose of one floating body (an `Object::Floating`, by index into `Scene::objects`).
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -63,7 +63,19 @@ pub struct SchoolParams {
     pub bounds_margin: f32,
     /// tail beats per second at max speed (half of it at rest)
     pub tail_beat_hz: f32,
+    /// how many schools the fish form (fish `id` joins school `id % schools`, 1..=16): a fish
+    /// sees only its own school's fish for alignment, cohesion and separation
+    pub schools: u32,
+    /// 1/s²: pull of each school towards its own centre, which wanders through the swim box
+    /// on a slow closed path (0: no centre, the classic boids)
+    pub goal_weight: f32,
+    /// metres: fish spawn within this of their school's centre, heading along its path
+    /// (0: scattered through the whole swim box, random headings)
+    pub spawn_radius: f32,
 }
+
+/// The most schools ([`SchoolParams::schools`]).
+pub const MAX_SCHOOLS: u32 = 16;
 
 impl Default for SchoolParams {
     fn default() -> Self {
@@ -84,7 +96,46 @@ impl Default for SchoolParams {
             max_accel: 6.0,
             bounds_margin: 1.0,
             tail_beat_hz: 2.5,
+            schools: 1,
+            goal_weight: 0.0,
+            spawn_radius: 0.0,
         }
+    }
+}
+
+impl SchoolParams {
+    /// The school count, clamped to 1..=[`MAX_SCHOOLS`].
+    pub fn school_count(&self) -> u32 {
+        self.schools.clamp(1, MAX_SCHOOLS)
+    }
+
+    /// The school fish `id` belongs to.
+    pub fn school_of(&self, id: u32) -> u32 {
+        id % self.school_count()
+    }
+
+    /// Where school `k`'s centre is at `t_secs` in the swim box `(lo, hi)`, and its velocity:
+    /// a Lissajous loop (frequencies 1 : 0.8 : 1.3 across x, z, y) through the middle of the
+    /// box, each school a golden-angle phase apart, moving at about half the top speed.
+    pub fn school_centre(&self, k: u32, t_secs: f64, (lo, hi): (Vec3, Vec3)) -> (Vec3, Vec3) {
+        let mid = 0.5 * (lo + hi);
+        let half = (0.5 * (hi - lo)).max(Vec3::ZERO);
+        let reach = Vec3::new(0.6 * half.x, 0.3 * half.y, 0.6 * half.z);
+        let omega = (0.5 * self.max_speed.max(0.1) / reach.x.max(reach.z).max(0.5)) as f64;
+        let phi = k as f64 * 2.399_963; // the golden angle, radians
+        let arg = |f: f64, k_phi: f64| f * omega * t_secs + k_phi * phi;
+        let (sx, cx) = arg(1.0, 1.0).sin_cos();
+        let (sz, cz) = arg(0.8, 2.0).sin_cos();
+        let (sy, cy) = arg(1.3, 3.0).sin_cos();
+        let pos = mid + reach * Vec3::new(sx as f32, sy as f32, sz as f32);
+        let vel = reach
+            * Vec3::new(
+                cx as f32,
+                (1.3 * cy) as f32,
+                (0.8 * cz) as f32,
+            )
+            * omega as f32;
+        (pos, vel)
     }
 }
 
@@ -126,6 +177,8 @@ pub struct Environment<'a> {
     pub seabed_height: f32,
     /// a point the fish flee from (the lecturer's pointer), if any
     pub flee_point: Option<Vec3>,
+    /// spheres (centre, radius) the fish keep out of: the rocks
+    pub obstacles: &'a [(Vec3, f32)],
 }
 
 impl<'a> Environment<'a> {
@@ -135,6 +188,7 @@ impl<'a> Environment<'a> {
             surface: None,
             seabed_height: f32::NEG_INFINITY,
             flee_point: None,
+            obstacles: &[],
         }
     }
 
@@ -247,7 +301,7 @@ impl School {
         let speed = 0.5 * (p.min_speed + p.max_speed);
         for id in n..count {
             let mut g = SplitMix64::for_item(p.seed, id as u64);
-            let pos = Vec3::new(
+            let mut pos = Vec3::new(
                 g.range(lo.x, hi.x),
                 g.range(lo.y, hi.y),
                 g.range(lo.z, hi.z),
@@ -255,11 +309,18 @@ impl School {
             // mostly horizontal headings, like a real school
             let yaw = g.range(0.0, std::f32::consts::TAU);
             let pitch = g.range(-0.3, 0.3);
-            let dir = Vec3::new(
+            let mut dir = Vec3::new(
                 yaw.cos() * pitch.cos(),
                 pitch.sin(),
                 yaw.sin() * pitch.cos(),
             );
+            if p.spawn_radius > 0.0 && p.spawn_radius.is_finite() {
+                // a ball around the school's centre, swimming along its path
+                let (centre, vel) = p.school_centre(p.school_of(id as u32), 0.0, (lo, hi));
+                let offset = Vec3::new(g.range(-1.0, 1.0), g.range(-1.0, 1.0), g.range(-1.0, 1.0));
+                pos = (centre + offset * p.spawn_radius).clamp(lo, hi);
+                dir = (vel.normalize_or(Vec3::X) + 0.2 * dir).normalize_or(Vec3::X);
+            }
             let vel = dir * if speed.is_finite() { speed } else { 1.0 };
             self.px.push(pos.x);
             self.py.push(pos.y);
@@ -287,7 +348,26 @@ impl School {
         self.rebuild_grid(env);
         self.compute_steering(env);
         self.integrate(dt, env);
+        self.keep_out_of_obstacles(env);
         self.time_secs += dt as f64;
+    }
+
+    /// Moves any fish inside an obstacle's sphere back onto its surface (steering turns them
+    /// away first; this makes it certain, whatever the step).
+    fn keep_out_of_obstacles(&mut self, env: &Environment) {
+        for &(centre, radius) in env.obstacles {
+            let r2 = radius * radius;
+            for i in 0..self.len() {
+                let d = Vec3::new(self.px[i], self.py[i], self.pz[i]) - centre;
+                let d2 = d.length_squared();
+                if d2 < r2 {
+                    let out = centre + d.normalize_or(Vec3::Y) * radius;
+                    self.px[i] = out.x;
+                    self.py[i] = out.y;
+                    self.pz[i] = out.z;
+                }
+            }
+        }
     }
 
     /// Pass 1: bin fish into the grid and reorder all arrays by cell.

@@ -32,19 +32,38 @@ pub(super) struct Padded {
     w: [Vec<f32>; 3],
 }
 
+/// How far apart the schools are put in the padded x coordinate: the swim box's width plus
+/// twice the largest radius, so a fish's neighbour sums see only its own school with no
+/// per-pair test (and no farther, to keep f32 precision in the offset coordinates).
+fn school_spacing_m(s: &School, env: &Environment) -> f32 {
+    let (lo, hi) = env.bounds.sanitised();
+    let r = s.params.neighbour_radius.max(s.params.separation_radius);
+    let r = if r.is_finite() { r.max(0.0) } else { 0.0 };
+    ((hi.x - lo.x) + 2.0 * r + 1.0).ceil()
+}
+
 impl Padded {
-    fn fill(&mut self, s: &School, alignment: f32, cohesion: f32) {
+    fn fill(&mut self, s: &School, alignment: f32, cohesion: f32, spacing: f32) {
         let n = s.len();
         let (p, v) = ([&s.px, &s.py, &s.pz], [&s.vx, &s.vy, &s.vz]);
         for d in 0..3 {
             let x = &mut self.x[d];
             x.clear();
-            x.extend_from_slice(p[d]);
+            if d == 0 && s.params.school_count() > 1 {
+                x.extend(
+                    p[0].iter()
+                        .zip(&s.id)
+                        .map(|(&px, &id)| px + s.params.school_of(id) as f32 * spacing),
+                );
+            } else {
+                x.extend_from_slice(p[d]);
+            }
             x.resize(n + LANES, FAR);
             let w = &mut self.w[d];
             w.clear();
             w.extend(
-                p[d].iter()
+                self.x[d][..n]
+                    .iter()
                     .zip(v[d])
                     .map(|(&x, &v)| alignment * v + cohesion * x),
             );
@@ -113,7 +132,15 @@ struct Consts {
     flee_radius: f32,
     flee_push: f32,
     separation_weight: f32,
+    /// each school's centre, and the pull towards it
+    centres: [Vec3; super::MAX_SCHOOLS as usize],
+    goal_weight: f32,
+    /// the first [`MAX_OBSTACLES`] obstacles (centre, radius), the rest unused (radius 0)
+    obstacles: [(Vec3, f32); MAX_OBSTACLES],
 }
+
+/// Obstacles the steering turns away from (more are still kept out by the step's projection).
+const MAX_OBSTACLES: usize = 8;
 
 /// Boids acceleration for every fish; arrays must be in the grid's cell order (pass 1).
 pub(super) fn compute(s: &mut School, env: &Environment) {
@@ -123,7 +150,7 @@ pub(super) fn compute(s: &mut School, env: &Environment) {
     }
     let p = &s.params;
     let mut padded = std::mem::take(&mut s.padded);
-    padded.fill(s, p.alignment_weight, p.cohesion_weight);
+    padded.fill(s, p.alignment_weight, p.cohesion_weight, school_spacing_m(s, env));
     let (lo, hi) = env.swim_box();
     let c = Consts {
         r2: p.neighbour_radius * p.neighbour_radius,
@@ -139,6 +166,13 @@ pub(super) fn compute(s: &mut School, env: &Environment) {
         flee_radius: p.flee_radius,
         flee_push: p.flee_weight * p.max_speed,
         separation_weight: p.separation_weight,
+        centres: std::array::from_fn(|k| p.school_centre(k as u32, s.time_secs, (lo, hi)).0),
+        goal_weight: if p.goal_weight.is_finite() {
+            p.goal_weight.max(0.0)
+        } else {
+            0.0
+        },
+        obstacles: std::array::from_fn(|k| env.obstacles.get(k).copied().unwrap_or((Vec3::ZERO, 0.0))),
     };
     steer_all(&c, s, &padded);
     s.padded = padded;
@@ -150,9 +184,11 @@ simd_dispatch!(fn steer_all(c: &Consts, s: &mut School, b: &Padded) => steer_lan
 fn steer_lanes(c: &Consts, s: &mut School, b: &Padded) {
     let (mut last_cell, mut runs, mut count) = ([usize::MAX; 3], [(0, 0); 9], 0);
     for i in 0..s.len() {
+        // in the padded buffers, x carries the school's offset
         let pos = Vec3::new(b.x[0][i], b.x[1][i], b.x[2][i]);
+        let world = Vec3::new(s.px[i], s.py[i], s.pz[i]);
         // fish are sorted by cell: consecutive fish mostly share their 27-cell block
-        let cell = s.grid.cell_coords(pos);
+        let cell = s.grid.cell_coords(world);
         if cell != last_cell {
             (runs, count) = s.grid.runs(cell);
             last_cell = cell;
@@ -162,7 +198,8 @@ fn steer_lanes(c: &Consts, s: &mut School, b: &Padded) {
             lanes = add_run(c, b, pos, lo as usize, hi as usize, lanes);
         }
         let own = Vec3::new(b.w[0][i], b.w[1][i], b.w[2][i]);
-        let a = acceleration(c, pos, own, &lanes.sums());
+        let centre = c.centres[s.params.school_of(s.id[i]) as usize];
+        let a = acceleration(c, world, own, &lanes.sums(), centre);
         s.ax[i] = a.x;
         s.ay[i] = a.y;
         s.az[i] = a.z;
@@ -235,11 +272,22 @@ fn chunk(v: &[f32], k: usize) -> [f32; LANES] {
 
 /// Separation, alignment, cohesion, walls and fleeing, capped at `max_accel`.
 #[inline(always)]
-fn acceleration(c: &Consts, pos: Vec3, own: Vec3, s: &Sums) -> Vec3 {
+fn acceleration(c: &Consts, pos: Vec3, own: Vec3, s: &Sums, centre: Vec3) -> Vec3 {
     let mut a = Vec3::from(s.separation) * c.separation_weight;
     if s.count > 0.0 {
         // w_a (v̄ − v) + w_c (x̄ − x): the mean of w_a v_j + w_c x_j minus the fish's own
         a += Vec3::from(s.weighted) / s.count - own;
+    }
+    // the school's wandering centre: a spring, capped so a straggler does not rocket back
+    a += ((centre - pos) * c.goal_weight).clamp_length_max(0.5 * c.max_accel);
+    // rocks: a push out growing across the margin around each
+    for &(o, r) in &c.obstacles {
+        let d = pos - o;
+        let dist = d.length();
+        let depth = (r + c.margin - dist) / c.margin;
+        if r > 0.0 && depth > 0.0 && dist > 1e-6 {
+            a += d / dist * (depth.min(1.0) * 2.0 * c.wall);
+        }
     }
     // walls, seabed and the lowest trough: a push growing across the margin
     let into_lo = ((c.lo + Vec3::splat(c.margin) - pos) / c.margin).max(Vec3::ZERO);

@@ -202,9 +202,10 @@ impl SlideWidget for WorkPrecision {
     fn ui(&mut self, ui: &mut egui::Ui) {
         style::projector_text(ui);
         ui.horizontal_wrapped(|ui| {
-            ui.add(egui::Slider::new(&mut self.spec.levels, 3..=14).text("step sizes"));
+            style::slider(ui, &mut self.spec.levels, 3..=14, "step sizes", false);
             self.methods.toggles_ui(ui);
-            ui.checkbox(
+            style::toggle(
+                ui,
                 &mut self.spec.rk5,
                 egui::RichText::new("RK5")
                     .color(style::text_color(ui, style::RK5))
@@ -247,6 +248,8 @@ impl SlideWidget for WorkPrecision {
                 );
             }
         });
+        let u = style::unit(ui);
+        style::y_name_ui(ui, "error");
         let half = (ui.available_width() - ui.spacing().item_spacing.x) / 2.0;
         let height = ui.available_height();
         let results = &self.results;
@@ -256,7 +259,7 @@ impl SlideWidget for WorkPrecision {
             // question, per error asked for, how many times the fastest method's time each
             // takes (the method at 1× is the one to pick, and it changes with the error)
             ui.allocate_ui(egui::vec2(half, height), |ui| {
-                log_axes_plot("wp-evals", "f evaluations", "error reached")
+                log_axes_plot(ui, "wp-evals", "f evaluations")
                     .width(half)
                     .height(height)
                     .show(ui, |p| {
@@ -269,14 +272,14 @@ impl SlideWidget for WorkPrecision {
                                 .collect();
                             // squares mark a tolerance sweep, dots a step-size sweep
                             let (shape, radius) = if c.adaptive {
-                                (MarkerShape::Square, 5.0)
+                                (MarkerShape::Square, style::MARKER_RADIUS * u)
                             } else {
-                                (MarkerShape::Circle, 4.5)
+                                (MarkerShape::Circle, 0.9 * style::MARKER_RADIUS * u)
                             };
                             p.line(
                                 Line::new(c.name.clone(), v.clone())
                                     .color(c.color)
-                                    .width(style::PATH_WIDTH),
+                                    .width(style::PATH_WIDTH * u),
                             );
                             p.points(
                                 Points::new(c.name.clone(), v)
@@ -289,14 +292,9 @@ impl SlideWidget for WorkPrecision {
                     });
             });
             ui.allocate_ui(egui::vec2(half, height), |ui| {
-                egui_plot::Plot::new("wp-relative")
-                    .allow_drag(false)
-                    .allow_zoom(false)
-                    .allow_scroll(false)
+                style::plot(ui, "wp-relative", "error asked for (time ÷ fastest)")
                     .width(half)
                     .height(height)
-                    .x_axis_label("error asked for")
-                    .y_axis_label("time ÷ fastest")
                     .x_grid_spacer(egui_plot::uniform_grid_spacer(|_| [2.0, 2.0, 2.0]))
                     .y_grid_spacer(egui_plot::uniform_grid_spacer(|_| [1.0, 1.0, 1.0]))
                     .x_axis_formatter(|m, _| pow10_label(-m.value))
@@ -310,7 +308,7 @@ impl SlideWidget for WorkPrecision {
                             p.line(
                                 Line::new(c.name.clone(), v.clone())
                                     .color(c.color)
-                                    .width(style::PATH_WIDTH),
+                                    .width(style::PATH_WIDTH * u),
                             );
                         }
                     });

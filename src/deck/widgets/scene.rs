@@ -76,7 +76,13 @@ pub struct SceneCameraSpec {
     pub pitch_deg: Option<f64>,
     /// metres from the camera's target
     pub distance: Option<f64>,
+    /// the point the camera orbits, world metres (below the water level: a view from under
+    /// water, through no waves)
+    pub target: Option<[f64; 3]>,
 }
+
+/// How far from the origin a slide may put the camera's target, metres.
+pub const TARGET_RANGE_M: (f64, f64) = (-100.0, 100.0);
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -148,6 +154,9 @@ impl SceneSpec {
             DISTANCE_RANGE_M,
             "camera distance (m)",
         );
+        for (k, v) in self.camera.target.iter().flatten().enumerate() {
+            check(&format!("camera.target[{k}]"), Some(*v), TARGET_RANGE_M, "camera target (m)");
+        }
         check("time_s", Some(self.time_s), TIME_RANGE_S, "time_s");
         check("height", Some(self.height), HEIGHT_RANGE, "height");
         out

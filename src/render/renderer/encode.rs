@@ -203,14 +203,15 @@ impl Renderer {
             pass.draw(0..3, 0..1);
         }
 
-        // 4. what lies below the water, for refraction
+        // 4. what lies below the water and how far away, for refraction and absorption
         enc.copy_texture_to_texture(
             t.hdr.as_image_copy(),
             t.scene_color.as_image_copy(),
             t.scene_color.size(),
         );
 
-        // 5. water: depth tested against the opaque depth, which it also samples (read-only)
+        // 5. water: depth tested against the opaque depth (attached read-only, never sampled:
+        //    the distances it needs are the copy's alpha)
         {
             let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("water"),

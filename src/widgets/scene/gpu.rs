@@ -12,10 +12,10 @@ use crate::scene::Scene;
 /// Quiet time after a save before the scene's files are re-read (as scene mode).
 const RELOAD_DEBOUNCE: std::time::Duration = std::time::Duration::from_millis(80);
 
-/// The format a slide's scene is rendered in (as `render-scene`'s).
-pub const OUTPUT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
-/// The same bytes as egui reads them.
-const EGUI_VIEW_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
+/// The format a slide's scene is rendered in: plain 8-bit, the output shader writing sRGB-encoded
+/// values itself (`to_target`, srgb.wgsl), which is what egui reads from a texture. No sRGB
+/// texture with a plain view format beside it: WebGL2 has no view formats (issue #25).
+pub const OUTPUT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 
 /// egui's wgpu device and the scene renderers made on it, shared through the egui context.
 #[derive(Clone)]
@@ -145,15 +145,12 @@ impl SceneGpu {
             Some(i) => i,
             None => {
                 let started = std::time::Instant::now();
-                let root = scene_path
-                    .parent()
-                    .and_then(Path::parent)
-                    .unwrap_or(Path::new(""));
+                let shader_dir = crate::bundled::shader_folder_for_scene(scene_path)?.dir;
                 let rs = &self.render_state;
                 let renderer = Renderer::new(
                     &rs.device,
                     &rs.queue,
-                    &root.join(crate::render::SHADER_DIR),
+                    &shader_dir,
                     scene,
                     OUTPUT_FORMAT,
                 )
@@ -161,7 +158,6 @@ impl SceneGpu {
                 tracing::debug!("scene renderer for slides made in {:?}", started.elapsed());
                 let watcher = self.watch_files.then(|| {
                     let ctx = self.ctx.clone();
-                    let shader_dir = root.join(crate::render::SHADER_DIR);
                     let scene_dir = scene_path.parent().unwrap_or(Path::new("."));
                     let wake = move || ctx.request_repaint();
                     DirWatcher::new(&[&shader_dir, scene_dir], RELOAD_DEBOUNCE, wake)
@@ -217,28 +213,24 @@ pub fn scene_texture(
         dimension: wgpu::TextureDimension::D2,
         format: OUTPUT_FORMAT,
         usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
-        view_formats: &[EGUI_VIEW_FORMAT],
+        view_formats: &[],
     });
     let view = texture.create_view(&Default::default());
-    // egui treats a texture's values as gamma-encoded: it samples the same bytes through a
-    // plain (non-sRGB) view, else the picture comes out decoded twice, too dark.
-    let egui_view = texture.create_view(&wgpu::TextureViewDescriptor {
-        format: Some(EGUI_VIEW_FORMAT),
-        ..Default::default()
-    });
+    // egui treats a texture's values as gamma-encoded, as the output shader wrote them
+    let egui_view = &view;
     let mut egui_renderer = rs.renderer.write();
     let id = match reuse {
         Some(id) => {
             egui_renderer.update_egui_texture_from_wgpu_texture(
                 &rs.device,
-                &egui_view,
+                egui_view,
                 wgpu::FilterMode::Linear,
                 id,
             );
             id
         }
         None => {
-            egui_renderer.register_native_texture(&rs.device, &egui_view, wgpu::FilterMode::Linear)
+            egui_renderer.register_native_texture(&rs.device, egui_view, wgpu::FilterMode::Linear)
         }
     };
     SceneTexture { texture, view, id }

@@ -20,7 +20,8 @@ pub use gpu::SceneGpu;
 
 use super::{Param, SlideWidget, style};
 use crate::deck::widgets::scene::{
-    DISTANCE_RANGE_M, PITCH_RANGE_DEG, SceneSpec, SceneToggles, SceneView, TIME_RANGE_S,
+    DISTANCE_RANGE_M, PITCH_RANGE_DEG, SceneSpec, SceneToggles, SceneView, TARGET_RANGE_M,
+    TIME_RANGE_S,
     YAW_RANGE_DEG,
 };
 use crate::render::{DebugView, RenderSettings};
@@ -196,6 +197,10 @@ impl SceneWidget {
         }
         if let Some(d) = cam.distance {
             sim.camera.distance = d.clamp(DISTANCE_RANGE_M.0, DISTANCE_RANGE_M.1) as f32;
+        }
+        if let Some(t) = cam.target {
+            let at = |v: f64| v.clamp(TARGET_RANGE_M.0, TARGET_RANGE_M.1) as f32;
+            sim.camera.target = glam::Vec3::new(at(t[0]), at(t[1]), at(t[2]));
         }
         if self.spec.playing && gpu.animate {
             let now = ui.input(|i| i.time);
