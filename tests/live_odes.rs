@@ -178,12 +178,15 @@ fn export_data_csv_equals_hand_written_loops() {
     let text = std::fs::read_to_string(&files[0]).unwrap();
     assert!(text.starts_with("series,t,x\n"), "{text}");
     let rows = parse_csv(&text);
-    // from t0 = 0.3 towards 5.0 in whole steps of 0.37: round(4.7 / 0.37) = 13 steps, as the
-    // slide draws them (the paths end at t0 + 13 h = 5.11)
+    // from t0 = 0.3 to 5.0: 12 steps of 0.37 (to 4.74), then one of 0.26 that lands on
+    // t_end, as the slide draws them (its errors are "at the end")
     for m in ["euler", "midpoint", "rk4"] {
         let got: Vec<&(String, f64, Vec<f64>)> = rows.iter().filter(|r| r.0 == m).collect();
         assert_eq!(got.len(), 14, "{m}");
-        let want = hand_loop(m, 0.3, 1.1, 0.37, 13);
+        let mut want = hand_loop(m, 0.3, 1.1, 0.37, 12);
+        let (t12, x12) = *want.last().unwrap();
+        want.push(hand_loop(m, t12, x12, 5.0 - t12, 1)[1]);
+        assert!((want[13].0 - 5.0).abs() < 1e-12);
         for (r, (t, x)) in got.iter().zip(&want) {
             assert!((r.1 - t).abs() <= 1e-12, "{m}: t {} vs {t}", r.1);
             assert!((r.2[0] - x).abs() <= 1e-12, "{m}: {} vs {x}", r.2[0]);

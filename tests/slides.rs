@@ -53,6 +53,8 @@ fn budgets_add_up_to_fifteen_minutes_and_every_slide_has_notes() {
         "inertia",
         "simulation",
         "exercise",
+        "scene",
+        "summary",
         "project-draw-call",
         "project-env-map",
         "project-normal-map",
@@ -60,7 +62,6 @@ fn budgets_add_up_to_fifteen_minutes_and_every_slide_has_notes() {
         "project-brdf",
         "project-particles",
         "project-caustics",
-        "scene",
     ];
     let pos: Vec<usize> = order
         .iter()
@@ -77,7 +78,7 @@ fn budgets_add_up_to_fifteen_minutes_and_every_slide_has_notes() {
 }
 
 /// One optional slide per technique the students' project asks for, each showing the live
-/// scene (a `Scene` widget), after the exercise and before the final scene slide.
+/// scene (a `Scene` widget), in an appendix after the closing slide (so paging ends there).
 #[test]
 fn the_project_slides_are_optional_and_show_the_live_scene() {
     let d = deck();
@@ -91,7 +92,10 @@ fn the_project_slides_are_optional_and_show_the_live_scene() {
         7,
         "draw call, env map, normal map, shadows, BRDF, particles, the GPU Gems article (caustics)"
     );
+    let last_main = d.slides.iter().rposition(|s| !s.skip).unwrap();
+    assert_eq!(d.slides[last_main].key(), "summary", "the talk ends on its summary");
     for s in project {
+        assert!(d.find(s.key()).unwrap() > last_main, "{}: after the summary", s.title);
         assert!(
             s.skip,
             "{}: optional (skip: true), outside the 15:00 plan",

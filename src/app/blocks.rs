@@ -1,4 +1,4 @@
-//! Slide body blocks: paragraphs, bullets, maths, images, live widgets and columns, laid out top
+//! Slide body blocks: paragraphs, bullets, tables, maths, images, live widgets and columns, laid out top
 //! to bottom on the canvas. Text blocks take the height they need; widgets share what is left.
 
 use egui::text::{LayoutJob, TextFormat};
@@ -95,6 +95,9 @@ fn measure(
             let (_, h) = images::image_size(ui.ctx(), bctx.base_dir, path, w, width, look);
             Some(h)
         }
+        Block::Table { header, rows } => Some(super::table_view::table_height(
+            ui, header, rows, width, look,
+        )),
         Block::Widget(_) => None,
         Block::Columns(cols) => {
             if is_flexible(block) {
@@ -140,6 +143,7 @@ fn block_ui(
                 .galley(egui::pos2(x, rect.top()), galley, look.palette.text);
         }
         Block::Bullets(items) => bullets_ui(ui, items, look),
+        Block::Table { header, rows } => super::table_view::table_ui(ui, header, rows, look),
         Block::Math { src, latex } => math_ui(ui, bctx, path, src, *latex, state),
         Block::Image { path: p, width: w } => {
             if let Some(e) = images::image_ui(ui, bctx.base_dir, p, w, look) {

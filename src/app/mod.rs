@@ -23,6 +23,7 @@ mod scene_panel;
 pub mod screens;
 pub mod slide_state;
 pub mod slide_view;
+mod table_view;
 pub mod theme;
 pub mod tweak_file;
 pub mod tweaks;

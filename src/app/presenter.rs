@@ -85,9 +85,8 @@ pub fn presenter_ui(
             ui,
             left.min,
             &format!(
-                "Now: water scene (Tab returns to slide {} / {})",
-                index + 1,
-                deck.slides.len()
+                "Now: water scene (Tab returns to slide {})",
+                deck.counter(index)
             ),
             text,
             &palette,
@@ -105,7 +104,7 @@ pub fn presenter_ui(
         heading(
             ui,
             left.min,
-            &format!("Now: {} / {}", index + 1, deck.slides.len()),
+            &format!("Now: {}", deck.counter(index)),
             text,
             &palette,
         );

@@ -137,7 +137,7 @@ pub fn slide_ui_with(
     };
     match slide.layout {
         Layout::Content => content_slide_ui(&mut content, slide, &bctx, state),
-        Layout::Title => title_slide_ui(&mut content, slide, &bctx, state),
+        Layout::Title => title_slide_ui(&mut content, deck, slide, &bctx, state),
     }
     if options.footer && slide.layout == Layout::Content {
         footer_ui(ui, deck, index, canvas, &look);
@@ -184,7 +184,13 @@ fn content_slide_ui(ui: &mut egui::Ui, slide: &Slide, bctx: &BlockCtx, state: &m
     blocks::blocks_ui(ui, &slide.body, &[], bctx, state, Align::Min);
 }
 
-fn title_slide_ui(ui: &mut egui::Ui, slide: &Slide, bctx: &BlockCtx, state: &mut SlideState) {
+fn title_slide_ui(
+    ui: &mut egui::Ui,
+    deck: &Deck,
+    slide: &Slide,
+    bctx: &BlockCtx,
+    state: &mut SlideState,
+) {
     let look = &bctx.look;
     let width = ui.available_width();
     let font = look.font(theme::SERIF_BOLD, size::TITLE_SLIDE, ui.ctx());
@@ -192,8 +198,8 @@ fn title_slide_ui(ui: &mut egui::Ui, slide: &Slide, bctx: &BlockCtx, state: &mut
         egui::text::LayoutJob::simple(slide.title.clone(), font, look.palette.title, width);
     job.halign = Align::Center;
     let galley = ui.painter().layout_job(job);
-    // The title sits a little above the middle, the body below it.
-    let top = ui.max_rect().top() + ui.max_rect().height() * 0.30;
+    // The title sits a little above the middle, the body below it, then who and when.
+    let top = ui.max_rect().top() + ui.max_rect().height() * 0.22;
     ui.add_space((top - ui.cursor().top()).max(0.0));
     let (rect, _) = ui.allocate_exact_size(vec2(width, galley.size().y), Sense::hover());
     ui.painter()
@@ -209,6 +215,23 @@ fn title_slide_ui(ui: &mut egui::Ui, slide: &Slide, bctx: &BlockCtx, state: &mut
     );
     ui.add_space(look.scaled(34.0 + 56.0));
     blocks::blocks_ui(ui, &slide.body, &[], bctx, state, Align::Center);
+    let who = [
+        (deck.lecturer.as_deref(), theme::SERIF_BOLD, look.palette.title),
+        (deck.date.as_deref(), theme::SERIF, look.palette.dim),
+    ];
+    if who.iter().any(|(t, ..)| t.is_some()) {
+        ui.add_space(look.scaled(size::BLOCK_GAP * 2.0));
+    }
+    for (text, family, color) in who {
+        let Some(text) = text else { continue };
+        let font = look.font(family, size::BODY, ui.ctx());
+        let mut job = egui::text::LayoutJob::simple(text.to_owned(), font, color, width);
+        job.halign = Align::Center;
+        let galley = ui.painter().layout_job(job);
+        let (rect, _) = ui.allocate_exact_size(vec2(width, galley.size().y), Sense::hover());
+        ui.painter().galley(rect.center_top(), galley, color);
+        ui.add_space(look.scaled(size::BULLET_GAP));
+    }
 }
 
 fn footer_ui(ui: &egui::Ui, deck: &Deck, index: usize, canvas: Rect, look: &Look) {
@@ -227,7 +250,7 @@ fn footer_ui(ui: &egui::Ui, deck: &Deck, index: usize, canvas: Rect, look: &Look
     painter.text(
         egui::pos2(x_right, y),
         egui::Align2::RIGHT_CENTER,
-        format!("{} / {}", index + 1, deck.slides.len()),
+        deck.counter(index),
         font,
         look.palette.dim,
     );

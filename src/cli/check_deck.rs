@@ -176,6 +176,21 @@ impl Walk<'_> {
                         IMAGE_WIDTH_RANGE.end()
                     ),
                 ),
+                Block::Table { header, rows } => {
+                    for (r, row) in rows.iter().enumerate() {
+                        if row.len() != header.len() {
+                            self.at(
+                                &format!("{at}.rows[{r}]"),
+                                format!(
+                                    "table row {} has {} cells, the header {}",
+                                    r + 1,
+                                    row.len(),
+                                    header.len()
+                                ),
+                            );
+                        }
+                    }
+                }
                 Block::Widget(spec) => self.widget(spec, &at),
                 Block::Columns(cols) => {
                     for (c, col) in cols.iter().enumerate() {

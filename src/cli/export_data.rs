@@ -5,7 +5,10 @@
 //! `vern9`, a tableau file's stem), and `exact` (the closed form at the reference's times) or
 //! `reference` (a fine RK4 solve, when there is no closed form). The convergence widget writes
 //! `series,h,error` and the work-precision widget `series,sweep,h_or_tol,f_evals,error`, one row
-//! per run. Widgets without computed points (Taylor, stability, rigid body) write no file.
+//! per run; the stability widget writes `series,re,im`, one closed polyline per method (its
+//! region's edge, |R(z)| = 1; further islands as `key.2`, …) and the z = hλ marker as `z`.
+//! Beside each, `DIR/slide-NN-wK-readouts.csv` (`readout,series,value`) holds the numbers the
+//! widget prints (errors at the end, stable-h limits, λ, slopes, matrices), unrounded.
 
 use std::path::{Path, PathBuf};
 
@@ -14,6 +17,7 @@ use anyhow::Context as _;
 use crate::app::SlideState;
 use crate::app::tweak_file::TweakFile;
 use crate::deck::Deck;
+use crate::widgets::Readout;
 
 /// Writes the CSV files of every plot widget of `deck` into `dir`, with `tweaks` applied (the
 /// values the presenter saved, as the PNGs show them); returns the files written.
@@ -28,13 +32,25 @@ pub fn write_data(deck: &Deck, dir: &Path, tweaks: &TweakFile) -> anyhow::Result
         // warnings about stale tweaks are printed by the PNG export
         let _ = tweaks.apply(deck, i, &mut state);
         for (k, (block, _)) in slide.widgets().into_iter().enumerate() {
-            let Some(csv) = state.widget_at(&block).and_then(|w| w.csv()) else {
+            let Some(widget) = state.widget_at(&block) else {
                 continue;
             };
-            let file = dir.join(format!("slide-{:0digits$}-w{}.csv", i + 1, k + 1));
-            std::fs::write(&file, csv)
-                .with_context(|| format!("cannot write {}", file.display()))?;
-            written.push(file);
+            let stem = format!("slide-{:0digits$}-w{}", i + 1, k + 1);
+            let readouts = widget.readouts();
+            let files = [
+                (format!("{stem}.csv"), widget.csv()),
+                (
+                    format!("{stem}-readouts.csv"),
+                    (!readouts.is_empty()).then(|| Readout::to_csv(&readouts)),
+                ),
+            ];
+            for (name, text) in files {
+                let Some(text) = text else { continue };
+                let file = dir.join(name);
+                std::fs::write(&file, text)
+                    .with_context(|| format!("cannot write {}", file.display()))?;
+                written.push(file);
+            }
         }
     }
     Ok(written)

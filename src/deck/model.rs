@@ -22,6 +22,12 @@ pub struct Deck {
     #[serde(default)]
     pub controls: Controls,
     pub slides: Vec<Slide>,
+    /// Who gives the talk, shown on `layout: Title` slides under the title.
+    #[serde(default)]
+    pub lecturer: Option<String>,
+    /// When (and where) it is given, shown on `layout: Title` slides, e.g. "18 December 2026".
+    #[serde(default)]
+    pub date: Option<String>,
     /// Prepared tweak states, recalled with the keys 1…9 during the talk.
     #[serde(default)]
     pub bookmarks: Vec<BookmarkDecl>,
@@ -205,6 +211,12 @@ pub enum Block {
     Widget(WidgetSpec),
     /// Side-by-side columns, each a list of blocks.
     Columns(Vec<Vec<Block>>),
+    /// A table: a header row set apart from the data, then rows of cells (inline markup as in
+    /// `Text`). Every row has as many cells as the header (`lectern check` says where not).
+    Table {
+        header: Vec<String>,
+        rows: Vec<Vec<String>>,
+    },
 }
 
 /// A bookmark written in the deck: key `1`…`9` jumps to `slide` and sets its widgets'
@@ -226,6 +238,22 @@ impl Deck {
     /// The planned length of the talk: the sum of the slides' budgets.
     pub fn planned_secs(&self) -> f32 {
         self.slides.iter().map(Slide::planned_secs).sum()
+    }
+
+    /// The page counter of slide `index` (0-based) as the footer and the presenter show it:
+    /// "7 / 20", where 20 is the number of the last slide paging reaches, so the talk's last
+    /// page reads "20 / 20"; an optional (`skip: true`) slide reads "23 · optional". The
+    /// numbers are the ones `G n` takes.
+    pub fn counter(&self, index: usize) -> String {
+        let last_main = self
+            .slides
+            .iter()
+            .rposition(|s| !s.skip)
+            .map_or(self.slides.len(), |i| i + 1);
+        match self.slides.get(index) {
+            Some(s) if s.skip => format!("{} · optional", index + 1),
+            _ => format!("{} / {last_main}", index + 1),
+        }
     }
 
     /// The index of the slide whose [`Slide::key`] is `key`.

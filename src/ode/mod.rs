@@ -15,6 +15,7 @@ pub mod pairs;
 pub mod problem;
 pub mod solve;
 pub mod stability;
+pub mod stability_region;
 pub mod stiff;
 pub mod study;
 pub mod symplectic;

@@ -167,7 +167,9 @@ pub fn frames_along(points: &[Vec3]) -> Vec<FrameSample> {
 pub struct TransportStep {
     pub heading_old: Vec3,
     pub heading_new: Vec3,
-    pub axis: Vec3,
+    /// The unit axis t_old × t_new; `None` where the path runs straight (the headings are
+    /// parallel, the cross product vanishes and R is the identity: no axis is defined).
+    pub axis: Option<Vec3>,
     pub angle_rad: f32,
     pub q_rotation: Quat,
     pub q_old: Quat,
@@ -180,9 +182,16 @@ pub fn transport_step(q_old: Quat, heading_new: Vec3) -> TransportStep {
     let heading_old = q_old * FISH_FORWARD;
     let h = heading_new.normalize_or(heading_old);
     let cross = heading_old.cross(h);
-    let angle_rad = heading_old.dot(h).clamp(-1.0, 1.0).acos();
-    let axis = cross.try_normalize().unwrap_or(q_old * FISH_UP);
-    let q_rotation = Quat::from_axis_angle(axis, angle_rad);
+    // parallel headings (|sin| below f32 noise, ~0.006°): no rotation and no axis; acos of a
+    // dot product a rounding short of 1 would read as a few hundredths of a degree
+    let straight = cross.length() < 1e-4 && heading_old.dot(h) > 0.0;
+    let angle_rad = if straight {
+        0.0
+    } else {
+        heading_old.dot(h).clamp(-1.0, 1.0).acos()
+    };
+    let axis = if straight { None } else { cross.try_normalize() };
+    let q_rotation = axis.map_or(Quat::IDENTITY, |a| Quat::from_axis_angle(a, angle_rad));
     TransportStep {
         heading_old,
         heading_new: h,

@@ -19,8 +19,23 @@ use crate::deck::widgets::ConvergenceSpec;
 use crate::ode::problem::Problem;
 use crate::ode::{Scheme, study};
 
-/// Below this, errors are round-off, not truncation: left out of the fit.
-const ERR_FLOOR: f64 = 1e-13;
+/// A run's error is round-off-dominated below this many machine epsilons per step (times the
+/// state's size): N steps each round at ~ε|x|, and the sum drifts like √N … N of those, so a
+/// truncation error within 10·N·ε|x| of it no longer shows the method's order.
+const ROUND_OFF_PER_STEP: f64 = 10.0 * f64::EPSILON;
+
+/// A slope needs at least this many points in the truncation regime: two points give a
+/// number, but not a measured order (the high orders reach round-off in two halvings).
+const MIN_FIT_POINTS: usize = 3;
+
+/// The (h, error) points where truncation dominates: error above [`ROUND_OFF_PER_STEP`] times
+/// the steps taken over `span` and the truth's size `scale`.
+pub fn truncation_points(pts: &[(f64, f64)], span: f64, scale: f64) -> Vec<(f64, f64)> {
+    pts.iter()
+        .copied()
+        .filter(|&(h, e)| e > ROUND_OFF_PER_STEP * (span / h).max(1.0) * scale.max(1.0))
+        .collect()
+}
 
 /// The step of halving `k`, rounded so a whole number of steps lands on t_end.
 fn level_h(spec: &ConvergenceSpec, t0: f64, k: usize) -> f64 {
@@ -64,12 +79,21 @@ fn levels(spec: &ConvergenceSpec) -> usize {
     spec.levels.clamp(2, 12)
 }
 
-/// Least-squares slope of log(err) against log(h) (`ode::study::loglog_slope`), over points
-/// above the round-off floor.
-pub fn fitted_slope(pts: &[(f64, f64)]) -> Option<f64> {
-    let v: Vec<(f64, f64)> = pts.iter().copied().filter(|p| p.1 > ERR_FLOOR).collect();
+/// Least-squares slope of log(err) against log(h) (`ode::study::loglog_slope`) over the
+/// truncation-dominated points ([`truncation_points`]); none with fewer than
+/// [`MIN_FIT_POINTS`] of them.
+pub fn fitted_slope(pts: &[(f64, f64)], span: f64, scale: f64) -> Option<f64> {
+    let v = truncation_points(pts, span, scale);
+    if v.len() < MIN_FIT_POINTS {
+        return None;
+    }
     let slope = study::loglog_slope(&v);
     slope.is_finite().then_some(slope)
+}
+
+/// The size of the true state the round-off floor scales with.
+fn scale_of(truth: &[f64]) -> f64 {
+    truth.iter().fold(0.0_f64, |a, v| a.max(v.abs()))
 }
 
 /// f-evaluations (steps × stages) computed per frame at most: 12 halvings of RK4 and friends
@@ -147,7 +171,7 @@ impl Convergence {
                 m.method.scheme(),
                 ks.clone(),
             ));
-            row.4 = fitted_slope(&row.3);
+            row.4 = fitted_slope(&row.3, self.spec.t_end - p.t0, scale_of(truth));
         }
     }
 
@@ -199,7 +223,7 @@ impl Convergence {
                     m.method.scheme(),
                     k..k + 1,
                 ));
-                row.4 = fitted_slope(&row.3);
+                row.4 = fitted_slope(&row.3, self.spec.t_end - p.t0, scale_of(&truth));
             }
         }
         self.cache = Some((key, rows, end, truth));
@@ -258,18 +282,23 @@ impl SlideWidget for Convergence {
             ui.ctx().request_repaint();
         }
         let label = self.ode.label();
-        let Some((_, data, _, _)) = &self.cache else {
+        let Some((_, data, _, truth)) = &self.cache else {
             return;
         };
+        let span = self.spec.t_end - self.ode.problem().map_or(0.0, |p| p.t0);
+        let scale = scale_of(truth);
         ui.horizontal_wrapped(|ui| {
             ui.label(format!(
                 "{label}, error at t = {}:  slope =",
                 fmt_num(self.spec.t_end)
             ));
-            for (_, name, color, _, s, _) in data {
-                let txt = s
-                    .map(|s| format!("{name} {s:.2}"))
-                    .unwrap_or_else(|| format!("{name} –"));
+            for (_, name, color, pts, s, _) in data {
+                // a line that reaches round-off before three halvings has no measured order
+                let txt = match s {
+                    Some(s) => format!("{name} {s:.2}"),
+                    None if pts.len() >= MIN_FIT_POINTS => format!("{name} – (round-off)"),
+                    None => format!("{name} –"),
+                };
                 // whole entries move to the next row; none breaks inside
                 let color = style::text_color(ui, *color);
                 ui.add(
@@ -312,9 +341,13 @@ impl SlideWidget for Convergence {
                 );
                 // every computed point is an obstacle: a label never covers one
                 ends.extend(v.iter().map(|e| PlotPoint::new(e[0], e[1])));
-                // label at the smallest h of the fit (round-off points below the floor do not
+                // label at the smallest h of the fit (round-off-dominated points do not
                 // count), left of the line, in room the x range leaves for it
-                let fitted_end = v.iter().rev().find(|p| p[1] > ERR_FLOOR.log10());
+                let fitted = truncation_points(pts, span, scale);
+                let fitted_end = fitted
+                    .iter()
+                    .rfind(|p| p.1 > 0.0)
+                    .map(|p| [p.0.log10(), p.1.log10()]);
                 if let (Some(s), Some(last)) = (slope, fitted_end) {
                     let text = match order {
                         Some(o) => format!("slope {s:.2} (order {o})"),
@@ -360,6 +393,14 @@ impl SlideWidget for Convergence {
             }
         }
         Some(out)
+    }
+
+    /// Each method's fitted slope as labelled (`slope`), over the points the fit used.
+    fn readouts(&mut self) -> Vec<super::Readout> {
+        self.compute()
+            .into_iter()
+            .filter_map(|(key, _, _, _, slope, _)| Some(super::Readout::new("slope", key, slope?)))
+            .collect()
     }
 }
 
@@ -422,18 +463,21 @@ mod tests {
         assert_eq!(row("dop853").1, "DOP853 (fixed h)");
         assert_eq!((row("dop853").5, row("rk4").5), (Some(8), None));
         assert_eq!(row("rk4").1, "RK4");
-        // Double precision leaves the high orders two or three halvings above round-off, so
-        // their slopes come partly from before the asymptotic range (Vern9 measures ~10.5
-        // here): the bands are honest about that, and still far from RK4's 4.
+        // Double precision leaves the high orders two or three halvings above round-off:
+        // DOP853 keeps three truncation-dominated points, Vern9 only two, which give a number
+        // (10.5) but no measured order, so it gets no slope.
         for (k, lo, hi) in [
             ("rk4", 3.8, 4.3),
             ("tsit5", 4.5, 5.5),
             ("vern6", 5.8, 7.2),
             ("dop853", 7.4, 8.6),
-            ("vern9", 8.5, 11.0),
         ] {
             let s = row(k).4.unwrap();
             assert!((lo..=hi).contains(&s), "{k}: {s}");
         }
+        assert_eq!(row("vern9").4, None);
+        let span = 4.0;
+        let kept = truncation_points(&row("vern9").3, span, 1.0);
+        assert_eq!(kept.len(), 2, "{:?}", row("vern9").3);
     }
 }

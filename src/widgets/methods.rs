@@ -177,6 +177,35 @@ pub fn fixed_path<S: System + ?Sized>(
     Path::from_solution(&sol, bound)
 }
 
+/// Integrates from `(t0, x0)` to exactly `t_end` with steps of `h` (the last one shorter when
+/// h does not divide the interval, as the numerics core's drivers do), at most `cap` steps
+/// (h grows to fit), stopping at the bound: a readout "at the end" is at the end.
+#[allow(clippy::too_many_arguments)]
+pub fn path_to<S: System + ?Sized>(
+    sys: &S,
+    scheme: Scheme<'_>,
+    t0: f64,
+    x0: &[f64],
+    h: f64,
+    t_end: f64,
+    cap: usize,
+    bound: f64,
+) -> Path {
+    if !(h > 0.0) || !(t_end > t0) {
+        return Path {
+            ts: vec![t0],
+            xs: vec![x0.to_vec()],
+            ..Default::default()
+        };
+    }
+    let h = h.max((t_end - t0) / cap.max(1) as f64);
+    let sol = match scheme {
+        Scheme::Method(m) => solve_fixed(sys, m, t0, x0, h, t_end, bound),
+        Scheme::Tableau(t) => solve_tableau(sys, t, t0, x0, h, t_end, bound),
+    };
+    Path::from_solution(&sol, bound)
+}
+
 /// The exact (or reference) path of a system, sampled finely for drawing.
 pub fn reference_path<S: System + ?Sized>(sys: &S, t0: f64, x0: &[f64], t_end: f64) -> Path {
     let h = ((t_end - t0) / 2000.0).max(1e-6);
@@ -281,6 +310,17 @@ mod tests {
         for (m, want) in cases {
             let order = (err(m, 0.02) / err(m, 0.01)).log2();
             assert!((order - want).abs() < 0.2, "{}: {order}", m.label());
+        }
+    }
+
+    #[test]
+    fn a_path_ends_at_t_end_whatever_h() {
+        let sys = FnSystem::new(1, |t, _x: &[f64], d: &mut [f64]| d[0] = t.cos());
+        for h in [0.7071, 0.5, 3.0, 10.0] {
+            let p = path_to(&sys, Scheme::Method(Method::Rk4), 0.0, &[0.0], h, 8.0, 4000, 1e9);
+            assert_eq!(*p.ts.last().unwrap(), 8.0, "h = {h}");
+            // every step but the last is h long
+            assert!((p.ts[1] - p.ts[0] - h.min(8.0)).abs() < 1e-12, "h = {h}");
         }
     }
 

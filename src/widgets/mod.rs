@@ -108,6 +108,41 @@ pub trait SlideWidget: Send {
     fn csv(&mut self) -> Option<String> {
         self.data().map(|d| d.to_csv())
     }
+    /// The numbers the widget prints (errors at the end, stable-h limits, λ, fitted slopes,
+    /// matrices), unrounded, for `export --data`'s `-readouts.csv` and tests: what the slide
+    /// says, checkable.
+    fn readouts(&mut self) -> Vec<Readout> {
+        Vec::new()
+    }
+}
+
+/// One number a widget prints: what it is (`error_at_end`, `stable_h`), of which series
+/// (a method's key, or empty), and its value.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Readout {
+    pub name: String,
+    pub series: String,
+    pub value: f64,
+}
+
+impl Readout {
+    pub fn new(name: impl Into<String>, series: impl Into<String>, value: f64) -> Self {
+        Self {
+            name: name.into(),
+            series: series.into(),
+            value,
+        }
+    }
+
+    /// `readout,series,value`, one row each, numbers in round-trip form (∞ as `inf`).
+    pub fn to_csv(readouts: &[Readout]) -> String {
+        use std::fmt::Write;
+        let mut out = String::from("readout,series,value\n");
+        for r in readouts {
+            let _ = writeln!(out, "{},{},{:?}", r.name, r.series, r.value);
+        }
+        out
+    }
 }
 
 /// The paths a plot widget computed, by series (`euler`, `rk4`, `exact`, a tableau's stem).

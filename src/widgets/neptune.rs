@@ -10,10 +10,10 @@ use std::path::Path as FsPath;
 
 use super::labels;
 use super::live_ode::LiveOde;
-use super::methods::{MethodSet, Path, fixed_path, reference_path, steps_for};
-use super::stability::{C, stable_h_limit};
-use super::style::{self, fmt_num};
-use super::{Param, PlotData, SlideWidget};
+use super::methods::{MethodSet, Path, path_to, reference_path};
+use super::stability::{C, H_LIMIT_MAX, limit_text, stable_h_limit};
+use super::style;
+use super::{Param, PlotData, Readout, SlideWidget};
 use crate::deck::widgets::NeptuneSpec;
 use crate::ode::System;
 use crate::ode::problem::Problem;
@@ -119,12 +119,29 @@ impl Neptune {
         };
         let h = self.spec.h.clamp(H_RANGE.0, H_RANGE.1);
         let t_end = self.spec.t_end;
-        let n = steps_for(p.t0, t_end, h, 10_000);
         self.methods
             .shown()
             .map(|m| {
-                let path = fixed_path(&p, m.method.scheme(), p.t0, &p.initial, h, n, 1e6);
+                let path =
+                    path_to(&p, m.method.scheme(), p.t0, &p.initial, h, t_end, 10_000, 1e6);
                 (m.method.key.clone(), m.method.name.clone(), m.color, path)
+            })
+            .collect()
+    }
+
+    /// Each shown method's largest stable h for `lambda`: (key, name, colour, limit); a method
+    /// without R(z) (a symplectic splitting) reads as never stable here.
+    pub fn limits(&self, lambda: C) -> Vec<(String, String, egui::Color32, f64)> {
+        self.methods
+            .shown()
+            .map(|m| {
+                let abs_r = |z: C| {
+                    m.method
+                        .stability((z.0, z.1))
+                        .map_or(f64::INFINITY, |r| r.0.hypot(r.1))
+                };
+                let lim = stable_h_limit(abs_r, lambda, H_LIMIT_MAX);
+                (m.method.key.clone(), m.method.name.clone(), m.color, lim)
             })
             .collect()
     }
@@ -152,24 +169,13 @@ impl SlideWidget for Neptune {
             return;
         };
         if let Some(lambda) = lambda {
+            let limits = self.limits(lambda);
             ui.horizontal(|ui| {
-                ui.label("stable for h <");
-                for m in self.methods.shown() {
-                    // a method without R(z) (a symplectic splitting) reads as never stable here
-                    let abs_r = |z: C| {
-                        m.method
-                            .stability((z.0, z.1))
-                            .map_or(f64::INFINITY, |r| r.0.hypot(r.1))
-                    };
-                    let lim = stable_h_limit(abs_r, lambda, 10.0);
-                    let txt = if lim == 0.0 {
-                        format!("{}: never", m.method.name)
-                    } else {
-                        format!("{}: {}", m.method.name, fmt_num(lim))
-                    };
+                ui.label(format!("{}, stable for", lambda_text(lambda)));
+                for (_, name, color, lim) in limits {
                     ui.colored_label(
-                        style::text_color(ui, m.color),
-                        egui::RichText::new(txt).strong(),
+                        style::text_color(ui, color),
+                        egui::RichText::new(format!("{name}: {}", limit_text(lim))).strong(),
                     );
                 }
             });
@@ -282,6 +288,33 @@ impl SlideWidget for Neptune {
             .map(|(k, _, _, p)| (k, p))
             .collect();
         Some(PlotData { vars, series })
+    }
+
+    /// λ, h, each method's stable-h limit (0 = never), and where a path diverged.
+    fn readouts(&mut self) -> Vec<Readout> {
+        let mut v = vec![Readout::new("h", "", self.spec.h)];
+        if let Some(l) = self.lambda() {
+            v.push(Readout::new("lambda_re", "", l.0));
+            v.push(Readout::new("lambda_im", "", l.1));
+            for (key, _, _, lim) in self.limits(l) {
+                v.push(Readout::new("stable_h", key, lim));
+            }
+        }
+        for (key, _, _, path) in self.paths() {
+            if let Some(t) = path.diverged_at {
+                v.push(Readout::new("diverged_at", key, t));
+            }
+        }
+        v
+    }
+}
+
+/// λ as the slide prints it: "λ = −5" for a real λ, "λ = 0 ± 1i" for a complex pair.
+pub fn lambda_text(l: C) -> String {
+    if l.1 == 0.0 {
+        format!("λ = {}", style::fmt_signed(l.0))
+    } else {
+        format!("λ = {} ± {}i", style::fmt_signed(l.0), style::fmt_signed(l.1.abs()))
     }
 }
 

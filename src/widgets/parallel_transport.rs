@@ -270,6 +270,19 @@ fn quat_text(q: Quat) -> String {
     format!("({:+.2}, {:+.2}, {:+.2}, {:+.2})", q.w, q.x, q.y, q.z)
 }
 
+/// The rotation line: axis and angle of R, or, on a straight stretch (t_old ∥ t_new), that R
+/// is the identity: the cross product vanishes, so there is no axis to print.
+pub fn rotation_text(step: &TransportStep) -> String {
+    match step.axis {
+        Some(axis) => format!(
+            "R: axis t_old×t_new {}, angle acos(t_old·t_new) = {:.1}°",
+            vec_text(axis),
+            step.angle_rad.to_degrees()
+        ),
+        None => "R = identity: t_old ∥ t_new (straight), t_old×t_new = 0, no axis".into(),
+    }
+}
+
 impl SlideWidget for ParallelTransport {
     fn ui(&mut self, ui: &mut egui::Ui) {
         style::projector_text(ui);
@@ -333,14 +346,7 @@ impl SlideWidget for ParallelTransport {
                 vec_text(step.heading_new),
             ),
         );
-        mono(
-            ui,
-            format!(
-                "R: axis t_old×t_new {}, angle acos(t_old·t_new) = {:.1}°",
-                vec_text(step.axis),
-                step.angle_rad.to_degrees()
-            ),
-        );
+        mono(ui, rotation_text(&step));
         mono(
             ui,
             format!(

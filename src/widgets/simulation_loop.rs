@@ -160,6 +160,12 @@ fn v3(v: DVec3) -> String {
     format!("({:+.2}, {:+.2}, {:+.2})", v.x, v.y, v.z)
 }
 
+/// One row of the world inverse inertia, as printed: the full matrix, since R I_body⁻¹ Rᵀ is
+/// not diagonal once the body has turned (the ω printed beside it is this matrix times L).
+fn matrix_row(r: DVec3) -> String {
+    format!("[{:+.4}  {:+.4}  {:+.4}]", r.x, r.y, r.z)
+}
+
 /// The six stages, each a title and its lines.
 fn stages(n: &LoopNumbers, steps: u64) -> [(&'static str, Vec<String>); 6] {
     let w = &n.wrench;
@@ -203,12 +209,10 @@ fn stages(n: &LoopNumbers, steps: u64) -> [(&'static str, Vec<String>); 6] {
             "renormalise q, recompute I⁻¹",
             vec![
                 format!("|q + h dq/dt| − 1 = {}", fmt_num(n.q_drift)),
-                format!(
-                    "I⁻¹ = R I_body⁻¹ Rᵀ: diag ({}, {}, {})",
-                    fmt_num(i.x_axis.x),
-                    fmt_num(i.y_axis.y),
-                    fmt_num(i.z_axis.z)
-                ),
+                "I⁻¹ = R I_body⁻¹ Rᵀ (1/(kg m²)) =".into(),
+                matrix_row(i.row(0)),
+                matrix_row(i.row(1)),
+                matrix_row(i.row(2)),
             ],
         ),
         (
@@ -377,5 +381,26 @@ impl SlideWidget for SimulationLoop {
 
     fn spec(&self) -> crate::widgets::WidgetSpec {
         crate::widgets::WidgetSpec::SimulationLoop(self.spec.clone())
+    }
+
+    /// The numbers of the loop as printed at the body's current time: L, ω and the world
+    /// inverse inertia `inv_inertia_world` (series `r0c0` … `r2c2`), with ω = I⁻¹ L.
+    fn readouts(&mut self) -> Vec<super::Readout> {
+        use super::Readout;
+        let Some(n) = self.advance(0.0) else {
+            return Vec::new();
+        };
+        let mut v = vec![Readout::new("t", "", n.time_secs)];
+        for (name, vec) in [("l", n.l), ("omega", n.omega)] {
+            for (axis, value) in ["x", "y", "z"].iter().zip(vec.to_array()) {
+                v.push(Readout::new(name, *axis, value));
+            }
+        }
+        for r in 0..3 {
+            for (c, value) in n.inv_inertia_world.row(r).to_array().iter().enumerate() {
+                v.push(Readout::new("inv_inertia_world", format!("r{r}c{c}"), *value));
+            }
+        }
+        v
     }
 }

@@ -10,11 +10,11 @@ use egui_plot::{Arrows, Line, PlotPoint, PlotPoints, Points};
 
 use super::live_ode::LiveOde;
 use super::methods::{
-    MAX_DRAWN_POINTS, MAX_STEP_MARKERS, MethodSet, Path, decimate, fixed_path, reference_path,
-    steps_for, truth_at,
+    MAX_DRAWN_POINTS, MAX_STEP_MARKERS, MethodSet, Path, decimate, path_to, reference_path,
+    truth_at,
 };
 use super::style::{self, fmt_num};
-use super::{Param, PlotData, SlideWidget};
+use super::{Param, PlotData, Readout, SlideWidget};
 use crate::deck::widgets::SlopeFieldSpec;
 use crate::ode::System;
 use crate::ode::problem::Problem;
@@ -132,7 +132,6 @@ impl SlopeField {
         let (vx0, vx1, vy0, vy1) = s.view.unwrap_or((0.0, 1.0, 0.0, 1.0));
         let extent = (vx1 - vx0).abs().max((vy1 - vy0).abs()).max(1.0);
         let bound = 1e3 * extent;
-        let n = steps_for(t0, s.t_end, h, MAX_STEPS);
         // `exact: false`: no reference solve and no global error (against a coarse reference
         // it would be a number that means nothing)
         let reference = if s.exact {
@@ -145,7 +144,7 @@ impl SlopeField {
             .methods
             .shown()
             .map(|m| {
-                let path = fixed_path(&p, m.method.scheme(), t0, &x0, h, n, bound);
+                let path = path_to(&p, m.method.scheme(), t0, &x0, h, s.t_end, MAX_STEPS, bound);
                 let error = if path.diverged_at.is_some() || !with_error {
                     None
                 } else {
@@ -505,6 +504,21 @@ impl SlideWidget for SlopeField {
             series,
         })
     }
+
+    /// What the errors line prints: each method's global error at the end (`error_at_end`,
+    /// at `t_end`, the time the path ends) or where it diverged (`diverged_at`).
+    fn readouts(&mut self) -> Vec<Readout> {
+        let (paths, _) = self.compute();
+        let mut v = vec![Readout::new("t_end", "", self.spec.t_end)];
+        for m in paths {
+            match (m.error, m.path.diverged_at) {
+                (_, Some(t)) => v.push(Readout::new("diverged_at", m.key, t)),
+                (Some(e), None) => v.push(Readout::new("error_at_end", m.key, e)),
+                (None, None) => {}
+            }
+        }
+        v
+    }
 }
 
 /// The exact solution at the reference path's times as the series `exact`, or the fine RK4
@@ -566,11 +580,15 @@ mod tests {
             "(ode: File(\"problems/circle.ron\"), h: 0.1, t_end: 6.283185307179586, view: Some((-2.0, 2.0, -2.0, 2.0)))",
         )
         .compute();
-        // Euler's radius after ~63 steps: (1 + h²)^(n/2)
+        // Euler's radius after 62 steps of h and a last short one to t_end = 2π: the product
+        // of √(1 + Δt²) over the steps
         let euler = paths[0].path.last();
-        let n = paths[0].path.ts.len() - 1;
+        let ts = &paths[0].path.ts;
+        assert_eq!(*ts.last().unwrap(), 6.283185307179586, "the path ends at t_end");
+        let want: f64 = ts.windows(2).map(|w| (1.0 + (w[1] - w[0]).powi(2)).sqrt()).product();
         let r = euler[0].hypot(euler[1]);
-        assert!((r - 1.01f64.powf(n as f64 / 2.0)).abs() < 1e-9);
+        assert!((r - want).abs() < 1e-9, "{r} vs {want}");
+        assert!((want / 1.01f64.powf(31.0) - 1.0).abs() < 1e-2);
         // the exact circle is the error's reference: RK4's error is tiny but not zero
         let rk4 = paths[2].error.unwrap();
         assert!(rk4 > 0.0 && rk4 < 1e-5, "{rk4}");

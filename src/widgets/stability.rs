@@ -6,10 +6,11 @@ use egui_plot::{Line, PlotImage, PlotPoint};
 
 use super::methods::{MethodSet, is_rk4_typo};
 use super::style;
-use super::{Param, SlideWidget};
+use super::{Param, Readout, SlideWidget};
 use crate::deck::widgets::{StabilitySpec, WidgetSpec};
 use crate::ode::Tableau;
 use crate::ode::stability::cabs;
+use crate::ode::stability_region::{self, Bounds, Region};
 
 /// A point of the complex plane, for the widget's geometry (the stability function itself is
 /// `ode::Tableau::stability`).
@@ -58,15 +59,37 @@ const FILL_ALPHA: f32 = 0.22;
 
 const RES: usize = 360;
 
-/// Each method's |R| = 1 contour as segments, with its name and colour.
-pub type Contours = Vec<(String, egui::Color32, Vec<[[f64; 2]; 2]>)>;
+/// One method's region: name, key (CSV series), colour, and its geometry (`None` when the
+/// method has no stability function or no stable point).
+pub struct MethodRegion {
+    pub name: String,
+    pub key: String,
+    pub color: egui::Color32,
+    pub region: Option<Region>,
+}
+
+/// Everything drawn that does not depend on h: each method's region and the box of the fill
+/// image (the regions' extent, padded), fitted to the regions unless the deck gives `view`.
+pub struct Geometry {
+    pub regions: Vec<MethodRegion>,
+    pub bounds: Bounds,
+}
 
 pub struct Stability {
     pub spec: StabilitySpec,
     initial: StabilitySpec,
     /// The spec's `methods`, resolved once (tableau files read relative to the deck).
     methods: MethodSet,
-    cache: Option<(StabilitySpec, egui::TextureHandle, Contours)>,
+    cache: Option<(StabilitySpec, egui::TextureHandle, Geometry)>,
+}
+
+/// A series name from a deck tableau's name: `Ralston (2)` → `ralston-2`.
+fn slug(name: &str) -> String {
+    let s: String = name
+        .chars()
+        .map(|c| if c.is_alphanumeric() { c.to_ascii_lowercase() } else { '-' })
+        .collect();
+    s.split('-').filter(|p| !p.is_empty()).collect::<Vec<_>>().join("-")
 }
 
 impl Stability {
@@ -84,18 +107,25 @@ impl Stability {
         }
     }
 
-    /// (name, colour, tableau) of every method drawn: the deck's list, then inline tableaux.
-    pub fn entries(&self) -> Vec<(String, egui::Color32, Tableau)> {
+    /// (name, key, colour, tableau) of every method drawn: the deck's list, then inline tableaux.
+    pub fn entries(&self) -> Vec<(String, String, egui::Color32, Tableau)> {
         let mut v: Vec<_> = self
             .methods
             .entries
             .iter()
             // methods without a tableau (implicit built-ins) get no region here yet
-            .filter_map(|e| Some((e.method.name.clone(), e.color, e.method.tableau.clone()?)))
+            .filter_map(|e| {
+                Some((
+                    e.method.name.clone(),
+                    e.method.key.clone(),
+                    e.color,
+                    e.method.tableau.clone()?,
+                ))
+            })
             .collect();
         let mut i = v
             .iter()
-            .filter(|(_, c, _)| style::EXTRA_COLORS.contains(c))
+            .filter(|(_, _, c, _)| style::EXTRA_COLORS.contains(c))
             .count();
         for t in &self.spec.tableaux {
             let color = if is_rk4_typo(t) {
@@ -104,29 +134,66 @@ impl Stability {
                 i += 1;
                 style::EXTRA_COLORS[(i - 1) % style::EXTRA_COLORS.len()]
             };
-            v.push((t.name.clone(), color, t.clone()));
+            v.push((t.name.clone(), slug(&t.name), color, t.clone()));
         }
         v
     }
 
-    /// Fill image (each method's colour at FILL_ALPHA where it is stable, composited "over" in
-    /// premultiplied alpha, so it works on light and dark slides alike) and the |R| = 1 contours
-    /// by marching squares, both on a RES × RES grid over the view.
-    pub fn regions(&self) -> (egui::ColorImage, Contours) {
-        let (x0, x1, y0, y1) = self.spec.view;
-        let at = |i: usize, j: usize| {
-            C(
-                x0 + (x1 - x0) * i as f64 / (RES - 1) as f64,
-                y1 - (y1 - y0) * j as f64 / (RES - 1) as f64,
-            )
+    /// Each method's whole region (`ode::stability_region`: a box grown until it holds the
+    /// region, the contour traced on it) and the box the plot shows: the deck's `view`, else
+    /// the bounded regions' extent with the origin, padded by a tenth.
+    pub fn geometry(&self) -> Geometry {
+        let regions: Vec<MethodRegion> = self
+            .entries()
+            .into_iter()
+            .map(|(name, key, color, t)| MethodRegion {
+                region: stability_region::region(|z| t.stability(z)),
+                name,
+                key,
+                color,
+            })
+            .collect();
+        let bounds = self.spec.view.unwrap_or_else(|| fitted_bounds(&regions));
+        Geometry { regions, bounds }
+    }
+
+    /// The box the plot shows at the current h: the geometry's, widened to hold the z = hλ
+    /// markers.
+    pub fn plot_bounds(&self, g: &Geometry) -> Bounds {
+        let (mut x0, mut x1, mut y0, mut y1) = g.bounds;
+        for z in self.markers() {
+            let m = 0.05 * (x1 - x0);
+            x0 = x0.min(z[0] - m);
+            x1 = x1.max(z[0] + m);
+            y0 = y0.min(z[1] - m);
+            y1 = y1.max(z[1] + m);
+        }
+        (x0, x1, y0, y1)
+    }
+
+    /// z = hλ and its conjugate, when the deck gives λ.
+    fn markers(&self) -> Vec<[f64; 2]> {
+        self.spec
+            .lambda
+            .map(|(a, b)| {
+                let h = self.spec.h;
+                vec![[a * h, b * h], [a * h, -b * h]]
+            })
+            .unwrap_or_default()
+    }
+
+    /// Fill image over `g.bounds` (each method's colour at FILL_ALPHA where it is stable,
+    /// composited "over" in premultiplied alpha, so it works on light and dark slides alike).
+    pub fn fill(&self, g: &Geometry) -> egui::ColorImage {
+        let grid = stability_region::Grid {
+            bounds: g.bounds,
+            nx: RES,
+            ny: RES,
         };
         // premultiplied (r, g, b, a) in 0..=1
         let mut rgba = vec![[0f32; 4]; RES * RES];
-        let mut contours = Vec::new();
-        for (name, color, tab) in self.entries() {
-            let vals: Vec<f64> = (0..RES * RES)
-                .map(|k| stability_abs(&tab, at(k % RES, k / RES)) - 1.0)
-                .collect();
+        for (_, _, color, tab) in self.entries() {
+            let vals = grid.values(|z| cabs(tab.stability(z)));
             for (k, v) in vals.iter().enumerate() {
                 if *v <= 0.0 {
                     let p = &mut rgba[k];
@@ -141,7 +208,6 @@ impl Stability {
                     }
                 }
             }
-            contours.push((name, color, marching_squares(&vals, at)));
         }
         let pixels: Vec<egui::Color32> = rgba
             .iter()
@@ -150,74 +216,87 @@ impl Stability {
                 egui::Color32::from_rgba_premultiplied(q(p[0]), q(p[1]), q(p[2]), q(p[3]))
             })
             .collect();
-        let image = egui::ColorImage {
+        egui::ColorImage {
             size: [RES, RES],
             source_size: egui::vec2(RES as f32, RES as f32),
             pixels,
-        };
-        (image, contours)
+        }
     }
 
-    fn build(&self, ctx: &egui::Context) -> (egui::TextureHandle, Contours) {
-        let (image, contours) = self.regions();
-        (
-            ctx.load_texture("stability-regions", image, egui::TextureOptions::LINEAR),
-            contours,
-        )
+    /// Each method's largest stable h for the deck's λ (0: never stable; `H_LIMIT_MAX`: stable
+    /// for every h tried).
+    pub fn stable_h(&self) -> Vec<(String, String, egui::Color32, f64)> {
+        let Some((lr, li)) = self.spec.lambda else {
+            return Vec::new();
+        };
+        self.entries()
+            .into_iter()
+            .map(|(name, key, color, t)| {
+                let lim = stable_h_limit(|z| stability_abs(&t, z), C(lr, li), H_LIMIT_MAX);
+                (name, key, color, lim)
+            })
+            .collect()
+    }
+
+    fn ensure_cache(&mut self, ctx: &egui::Context) {
+        let same = self.cache.as_ref().is_some_and(|(s, ..)| {
+            s.methods == self.spec.methods
+                && s.tableaux == self.spec.tableaux
+                && s.view == self.spec.view
+        });
+        if !same {
+            let g = self.geometry();
+            let tex = ctx.load_texture(
+                "stability-regions",
+                self.fill(&g),
+                egui::TextureOptions::LINEAR,
+            );
+            self.cache = Some((self.spec.clone(), tex, g));
+        }
     }
 }
 
-/// Segments of the zero level set of `vals` (RES × RES, row-major), in plot coordinates.
-fn marching_squares(vals: &[f64], at: impl Fn(usize, usize) -> C) -> Vec<[[f64; 2]; 2]> {
-    let mut segs = Vec::new();
-    let lerp = |a: C, b: C, va: f64, vb: f64| {
-        let t = va / (va - vb);
-        [a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1)]
-    };
-    for j in 0..RES - 1 {
-        for i in 0..RES - 1 {
-            let corners = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)];
-            let v: Vec<f64> = corners.iter().map(|&(a, b)| vals[b * RES + a]).collect();
-            let mut pts = Vec::with_capacity(4);
-            for e in 0..4 {
-                let (a, b) = (e, (e + 1) % 4);
-                if (v[a] <= 0.0) != (v[b] <= 0.0) {
-                    pts.push(lerp(
-                        at(corners[a].0, corners[a].1),
-                        at(corners[b].0, corners[b].1),
-                        v[a],
-                        v[b],
-                    ));
-                }
-            }
-            if pts.len() >= 2 {
-                segs.push([pts[0], pts[1]]);
-            }
-            if pts.len() == 4 {
-                segs.push([pts[2], pts[3]]);
-            }
-        }
+/// The stable-h search goes up to this h; a method stable there reads "every h".
+pub const H_LIMIT_MAX: f64 = 10.0;
+
+/// How a stable-h limit reads: "never" for an empty interval, "every h" when nothing
+/// tried was unstable, else "h < 2.83".
+pub fn limit_text(lim: f64) -> String {
+    if lim <= 0.0 {
+        "never".into()
+    } else if lim >= H_LIMIT_MAX {
+        "every h".into()
+    } else {
+        format!("h < {}", style::fmt_num(lim))
     }
-    segs
+}
+
+/// The union of the bounded regions' boxes (an unbounded region only when all are), with the
+/// origin, widened by a tenth on each side and symmetric about the real axis.
+fn fitted_bounds(regions: &[MethodRegion]) -> Bounds {
+    let all: Vec<&Region> = regions.iter().filter_map(|m| m.region.as_ref()).collect();
+    let bounded: Vec<&&Region> = all.iter().filter(|r| !r.unbounded).collect();
+    let chosen: Vec<Bounds> = if bounded.is_empty() {
+        all.iter().map(|r| r.bounds).collect()
+    } else {
+        bounded.iter().map(|r| r.bounds).collect()
+    };
+    let b = chosen.into_iter().fold((0.0_f64, 0.0_f64, 0.0_f64, 0.0_f64), |a, b| {
+        (a.0.min(b.0), a.1.max(b.1), a.2.min(b.2), a.3.max(b.3))
+    });
+    stability_region::pad_symmetric(b, 0.1)
 }
 
 impl SlideWidget for Stability {
     fn ui(&mut self, ui: &mut egui::Ui) {
         style::projector_text(ui);
         let ink = style::ink(ui);
-        if !self.cache.as_ref().is_some_and(|(s, ..)| {
-            s.methods == self.spec.methods
-                && s.tableaux == self.spec.tableaux
-                && s.view == self.spec.view
-        }) {
-            let (tex, contours) = self.build(ui.ctx());
-            self.cache = Some((self.spec.clone(), tex, contours));
-        }
+        self.ensure_cache(ui.ctx());
         let entries = self.entries();
         style::problems_ui(ui, None, &self.methods.errors);
         ui.horizontal(|ui| {
             ui.label("|R(hλ)| ≤ 1:");
-            for (name, color, _) in &entries {
+            for (name, _, color, _) in &entries {
                 ui.colored_label(
                     style::text_color(ui, *color),
                     egui::RichText::new(name).strong(),
@@ -228,38 +307,36 @@ impl SlideWidget for Stability {
             }
         });
         if let Some((lr, li)) = self.spec.lambda {
+            let limits = self.stable_h();
             ui.horizontal(|ui| {
                 ui.label(format!(
-                    "λ = {lr} {} {}i, stable for h <",
+                    "λ = {lr} {} {}i, stable for",
                     if li < 0.0 { "−" } else { "+" },
                     li.abs()
                 ));
-                for (name, color, t) in &entries {
-                    let lim = stable_h_limit(|z| stability_abs(t, z), C(lr, li), 10.0);
+                for (name, _, color, lim) in &limits {
                     ui.colored_label(
                         style::text_color(ui, *color),
-                        format!("{name}: {}", style::fmt_num(lim)),
+                        format!("{name}: {}", limit_text(*lim)),
                     );
                 }
             });
         }
-        let Some((_, tex, contours)) = &self.cache else {
+        let Some((_, tex, g)) = &self.cache else {
             return;
         };
-        let (x0, x1, y0, y1) = self.spec.view;
-        let z = self
-            .spec
-            .lambda
-            .map(|(a, b)| [a * self.spec.h, b * self.spec.h]);
-        // Keep circles round (aspect 1) and show the whole view: widen whichever axis the
+        let (x0, x1, y0, y1) = g.bounds;
+        let (px0, px1, py0, py1) = self.plot_bounds(g);
+        let markers = self.markers();
+        // Keep circles round (aspect 1) and show the whole box: widen whichever axis the
         // plot's shape leaves room for, instead of letting the plot crop the other one.
         let u = style::unit(ui);
         style::y_name_ui(ui, "Im z");
         let avail = ui.available_size();
         let shape = f64::from((avail.x / avail.y.max(1.0)).clamp(0.2, 5.0));
-        let (cx, cy) = ((x0 + x1) / 2.0, (y0 + y1) / 2.0);
-        let half_w = ((x1 - x0) / 2.0).max((y1 - y0) / 2.0 * shape);
-        let half_h = ((y1 - y0) / 2.0).max((x1 - x0) / 2.0 / shape);
+        let (cx, cy) = ((px0 + px1) / 2.0, (py0 + py1) / 2.0);
+        let half_w = ((px1 - px0) / 2.0).max((py1 - py0) / 2.0 * shape);
+        let half_h = ((py1 - py0) / 2.0).max((px1 - px0) / 2.0 / shape);
         style::plot(ui, "stability", "Re z")
             .data_aspect(1.0)
             .default_x_bounds(cx - half_w, cx + half_w)
@@ -271,29 +348,32 @@ impl SlideWidget for Stability {
                     PlotPoint::new((x0 + x1) / 2.0, (y0 + y1) / 2.0),
                     egui::vec2((x1 - x0) as f32, (y1 - y0) as f32),
                 ));
+                let (ax0, ax1) = (cx - half_w, cx + half_w);
+                let (ay0, ay1) = (cy - half_h, cy + half_h);
                 p.line(
-                    Line::new("axis", vec![[x0, 0.0], [x1, 0.0]])
+                    Line::new("axis", vec![[ax0, 0.0], [ax1, 0.0]])
                         .color(egui::Color32::GRAY)
                         .width(1.0),
                 );
                 p.line(
-                    Line::new("axis", vec![[0.0, y0], [0.0, y1]])
+                    Line::new("axis", vec![[0.0, ay0], [0.0, ay1]])
                         .color(egui::Color32::GRAY)
                         .width(1.0),
                 );
-                for (name, color, segs) in contours {
-                    for s in segs {
+                for m in &g.regions {
+                    for line in m.region.iter().flat_map(|r| &r.boundary) {
+                        let pts: Vec<[f64; 2]> = line.iter().map(|z| [z.0, z.1]).collect();
                         p.line(
-                            Line::new(name.clone(), s.to_vec())
-                                .color(*color)
+                            Line::new(m.name.clone(), pts)
+                                .color(m.color)
                                 .width(style::PATH_WIDTH * u)
                                 .allow_hover(false),
                         );
                     }
                 }
-                if let Some(z) = z {
+                if !markers.is_empty() {
                     p.points(
-                        egui_plot::Points::new("z = hλ", vec![z, [z[0], -z[1]]])
+                        egui_plot::Points::new("z = hλ", markers.clone())
                             .color(ink)
                             .radius(style::KEY_MARKER_RADIUS * u),
                     );
@@ -323,8 +403,53 @@ impl SlideWidget for Stability {
         self.methods.errors.clone()
     }
 
+    /// `series,re,im`: each method's region edge as a closed polyline (the main region under
+    /// its key, islands as `key.2`, …), then the z = hλ markers as `z`.
+    fn csv(&mut self) -> Option<String> {
+        use std::fmt::Write;
+        let g = self.geometry();
+        let mut out = String::from("series,re,im\n");
+        for m in &g.regions {
+            for (k, line) in m.region.iter().flat_map(|r| &r.boundary).enumerate() {
+                let series = if k == 0 { m.key.clone() } else { format!("{}.{}", m.key, k + 1) };
+                for z in line {
+                    let _ = writeln!(out, "{series},{:?},{:?}", z.0, z.1);
+                }
+            }
+        }
+        for z in self.markers() {
+            let _ = writeln!(out, "z,{:?},{:?}", z[0], z[1]);
+        }
+        Some(out)
+    }
+
+    /// The stable-h limit of each method for the deck's λ (0 = "never"), λ itself, h, and the
+    /// box the plot shows at least (`plot_re_min` … `plot_im_max`).
+    fn readouts(&mut self) -> Vec<Readout> {
+        let g = self.geometry();
+        let mut v = Vec::new();
+        if let Some((lr, li)) = self.spec.lambda {
+            v.push(Readout::new("lambda_re", "", lr));
+            v.push(Readout::new("lambda_im", "", li));
+            v.push(Readout::new("h", "", self.spec.h));
+            for (_, key, _, lim) in self.stable_h() {
+                v.push(Readout::new("stable_h", key, lim));
+            }
+        }
+        let (x0, x1, y0, y1) = self.plot_bounds(&g);
+        for (name, value) in [
+            ("plot_re_min", x0),
+            ("plot_re_max", x1),
+            ("plot_im_min", y0),
+            ("plot_im_max", y1),
+        ] {
+            v.push(Readout::new(name, "", value));
+        }
+        v
+    }
+
     fn colours(&self) -> Vec<(String, egui::Color32)> {
-        self.entries().into_iter().map(|(n, c, _)| (n, c)).collect()
+        self.entries().into_iter().map(|(n, _, c, _)| (n, c)).collect()
     }
 }
 
@@ -332,7 +457,6 @@ impl SlideWidget for Stability {
 mod tests {
     use super::*;
     use crate::deck::widgets::MethodRef;
-    use crate::deck::widgets::stability::default_view;
     use crate::ode::Method;
 
     #[test]
@@ -356,7 +480,7 @@ mod tests {
                 MethodRef::Tableau("tableaux/nope.ron".into()),
             ],
             tableaux: vec![],
-            view: default_view(),
+            view: None,
             lambda: None,
             h: 1.0,
         };
@@ -364,9 +488,9 @@ mod tests {
         let entries = w.entries();
         assert_eq!(entries.len(), 2);
         // the typo'd RK4 is a different method: its region on the real axis ends elsewhere
-        let typo = &entries[1].2;
+        let typo = &entries[1].3;
         assert_eq!(typo, &Tableau::rk4_typo());
-        assert_eq!(entries[1].1, style::RK4_TYPO, "the typo keeps its colour");
+        assert_eq!(entries[1].2, style::RK4_TYPO, "the typo keeps its colour");
         let lim = |t: &Tableau| stable_h_limit(|z| stability_abs(t, z), C(-1.0, 0.0), 10.0);
         assert!((lim(typo) - lim(&Tableau::rk4())).abs() > 0.05);
         let err = &w.methods.errors[0];
@@ -383,7 +507,7 @@ mod tests {
                 MethodRef::Tableau("/etc/passwd".into()),
             ],
             tableaux: vec![],
-            view: default_view(),
+            view: None,
             lambda: None,
             h: 1.0,
         };
@@ -398,18 +522,23 @@ mod tests {
         let spec = StabilitySpec {
             methods: vec![MethodRef::Builtin(Method::Euler)],
             tableaux: vec![],
-            view: default_view(),
+            view: None,
             lambda: None,
             h: 1.0,
         };
-        let (img, _) = Stability::new(spec).regions();
+        let w = Stability::new(spec);
+        let g = w.geometry();
+        let img = w.fill(&g);
+        let (x0, x1, y0, y1) = g.bounds;
+        // fitted to Euler's disc: −2 … 0 and ±1, padded by a tenth
+        assert!(x0 < -2.0 && x0 > -2.4 && x1 > 0.0 && x1 < 0.4, "{:?}", g.bounds);
+        assert!((y0 + y1).abs() < 1e-12 && y1 > 1.0 && y1 < 1.5, "{:?}", g.bounds);
         let px = |re: f64, im: f64| {
-            let (x0, x1, y0, y1) = default_view();
             let i = ((re - x0) / (x1 - x0) * (RES - 1) as f64).round() as usize;
             let j = ((y1 - im) / (y1 - y0) * (RES - 1) as f64).round() as usize;
             img.pixels[j * RES + i]
         };
-        // z = −1 is inside Euler's disc: Euler's colour at FILL_ALPHA; z = 1 is outside: clear
+        // z = −1 is inside Euler's disc: Euler's colour at FILL_ALPHA; z = 0.2 is outside: clear
         let inside = px(-1.0, 0.0);
         let a = (FILL_ALPHA * 255.0).round() as u8;
         assert_eq!(inside.a(), a);
@@ -419,6 +548,13 @@ mod tests {
             (inside.r(), inside.g(), inside.b()),
             (pm(e.r()), pm(e.g()), pm(e.b()))
         );
-        assert_eq!(px(1.0, 0.0), egui::Color32::TRANSPARENT);
+        assert_eq!(px(0.2, 0.0), egui::Color32::TRANSPARENT);
+    }
+
+    #[test]
+    fn never_and_every_h_read_as_words() {
+        assert_eq!(limit_text(0.0), "never");
+        assert_eq!(limit_text(H_LIMIT_MAX), "every h");
+        assert_eq!(limit_text(2.8284271), "h < 2.828");
     }
 }

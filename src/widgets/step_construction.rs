@@ -10,7 +10,7 @@ use super::labels;
 use super::live_ode::LiveOde;
 use super::methods::fixed_path;
 use super::style::{self, fmt_num};
-use super::{Param, PlotData, SlideWidget};
+use super::{Param, PlotData, Readout, SlideWidget};
 use crate::deck::widgets::{MethodRef, StepSpec, WidgetSpec};
 use crate::ode::problem::Problem;
 use crate::ode::{Method, Scheme, System};
@@ -267,7 +267,15 @@ impl SlideWidget for StepConstruction {
         let truth = p.exact_from(t0, &[x0], t0 + h).map(|x| x[0]);
         if stage == n {
             let err = truth
-                .map(|x| fmt_num((end[1] - x).abs()))
+                .map(|x| {
+                    let e = (end[1] - x).abs();
+                    let share = if x != 0.0 {
+                        format!(" ({:.0} % of x)", 100.0 * e / x.abs())
+                    } else {
+                        String::new()
+                    };
+                    format!("{}{share}", fmt_num(e))
+                })
                 .unwrap_or_else(|| "–".into());
             ui.label(format!(
                 "x(t₀+h) ≈ {}   error of this one step: {err}",
@@ -401,6 +409,28 @@ impl SlideWidget for StepConstruction {
             vars: p.vars.clone(),
             series: vec![(m.method().name().to_string(), path)],
         })
+    }
+
+    /// What the slide prints once the step is built: x(t₀+h) of the method (`x_end`), the
+    /// exact value there (`exact_end`) and the error of the step (`error_end`).
+    fn readouts(&mut self) -> Vec<Readout> {
+        let Ok(p) = self.problem() else {
+            return Vec::new();
+        };
+        let m = Construction::of(&self.spec.method);
+        let key = m.method().name().to_string();
+        let (t0, x0) = self.spec.start.unwrap_or((p.t0, p.initial[0]));
+        let h = self.spec.h;
+        let (_, end) = construct(&p, m, t0, x0, h);
+        let mut v = vec![
+            Readout::new("h", "", h),
+            Readout::new("x_end", key.clone(), end[1]),
+        ];
+        if let Some(x) = p.exact_from(t0, &[x0], t0 + h).map(|x| x[0]) {
+            v.push(Readout::new("exact_end", "", x));
+            v.push(Readout::new("error_end", key, (end[1] - x).abs()));
+        }
+        v
     }
 }
 

@@ -206,17 +206,38 @@ pub fn keys(ui: &egui::Ui) -> Keys {
     })
 }
 
-/// One key press scales h by this factor (four presses double it).
-pub const H_KEY_FACTOR: f64 = 1.189_207_115_002_721; // 2^(1/4)
+/// The values `-`/`+` step h through: 1, 2, 5 × 10ᵏ, so every h a key gives reads round on
+/// the slide (0.5, 1, 2), never 0.7071.
+pub fn h_ladder_next(h: f64, up: bool) -> f64 {
+    // the rung at or just below h (a hair of tolerance so 0.5 counts as on the ladder)
+    let decade = 10f64.powf((h * (1.0 + 1e-9)).log10().floor());
+    let rungs = [1.0, 2.0, 5.0, 10.0];
+    let on = |r: f64| (h / (r * decade) - 1.0).abs() < 1e-6;
+    if up {
+        rungs
+            .iter()
+            .map(|r| r * decade)
+            .find(|&v| v > h && !on(v / decade))
+            .unwrap_or(10.0 * decade)
+    } else {
+        rungs
+            .iter()
+            .rev()
+            .map(|r| r * decade)
+            .find(|&v| v < h && !on(v / decade))
+            .unwrap_or(0.5 * decade)
+    }
+}
 
 impl Keys {
-    /// Applies `-`/`+` to a step size (a quarter octave each) and clamps it to `range`.
+    /// Applies `-`/`+` to a step size (the next value of [`h_ladder_next`]) and clamps it to
+    /// `range`.
     pub fn step_h(&self, h: &mut f64, range: (f64, f64)) {
         if self.h_up {
-            *h *= H_KEY_FACTOR;
+            *h = h_ladder_next(*h, true);
         }
         if self.h_down {
-            *h /= H_KEY_FACTOR;
+            *h = h_ladder_next(*h, false);
         }
         *h = h.clamp(range.0, range.1);
     }
@@ -287,6 +308,17 @@ pub fn fmt_num(x: f64) -> String {
     } else {
         format!("{x:.3}")
     }
+}
+
+/// A short number for maths on a slide: up to 3 decimals without trailing zeros, a real minus
+/// sign (−5, 0.557, 2.5).
+pub fn fmt_signed(x: f64) -> String {
+    if !x.is_finite() {
+        return "∞".into();
+    }
+    let s = format!("{:.3}", x.abs());
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if x < 0.0 && s != "0" { format!("−{s}") } else { s.to_string() }
 }
 
 /// What keeps a widget from drawing all it should (its equation did not load, a tableau file
@@ -452,5 +484,38 @@ mod contrast_tests {
         }
         // Midpoint's blue on the dark slide and the warm colours on the light one do not pass
         assert!(changed >= 3, "{changed}");
+    }
+}
+
+#[cfg(test)]
+mod ladder_tests {
+    use super::*;
+
+    #[test]
+    fn h_keys_walk_a_ladder_of_round_values() {
+        let mut h = 0.3;
+        let mut up = Vec::new();
+        for _ in 0..6 {
+            h = h_ladder_next(h, true);
+            up.push(h);
+        }
+        let want = [0.5, 1.0, 2.0, 5.0, 10.0, 20.0];
+        for (g, w) in up.iter().zip(want) {
+            assert!((g - w).abs() < 1e-12 * w, "{up:?}");
+        }
+        let mut down = Vec::new();
+        let mut h = 1.0;
+        for _ in 0..4 {
+            h = h_ladder_next(h, false);
+            down.push(h);
+        }
+        let want = [0.5, 0.2, 0.1, 0.05];
+        for (g, w) in down.iter().zip(want) {
+            assert!((g - w).abs() < 1e-12 * w, "{down:?}");
+        }
+        // off the ladder: to the next rung either way
+        assert!((h_ladder_next(0.7071, true) - 1.0).abs() < 1e-12);
+        assert!((h_ladder_next(0.7071, false) - 0.5).abs() < 1e-12);
+        assert!((h_ladder_next(1.5, false) - 1.0).abs() < 1e-12);
     }
 }

@@ -253,50 +253,66 @@ impl SlideWidget for WorkPrecision {
         let half = (ui.available_width() - ui.spacing().item_spacing.x) / 2.0;
         let height = ui.available_height();
         let results = &self.results;
+        let relative = study::relative_cost(results);
         ui.horizontal_top(|ui| {
-            for (id, xlab, by_time) in [
-                ("wp-evals", "f evaluations", false),
-                ("wp-time", "seconds", true),
-            ] {
-                ui.allocate_ui(egui::vec2(half, height), |ui| {
-                    log_axes_plot(ui, id, xlab)
-                        .width(half)
-                        .height(height)
-                        .show(ui, |p| {
-                            for c in results {
-                                let v: Vec<[f64; 2]> = c
-                                    .samples
-                                    .iter()
-                                    .filter(|s| s.error.is_finite() && s.error > 0.0)
-                                    .map(|s| {
-                                        [
-                                            if by_time { s.secs } else { s.f_evals as f64 }.log10(),
-                                            s.error.log10().max(-16.0),
-                                        ]
-                                    })
-                                    .collect();
-                                // squares mark a tolerance sweep, dots a step-size sweep
-                                let (shape, radius) = if c.adaptive {
-                                    (MarkerShape::Square, style::MARKER_RADIUS * u)
-                                } else {
-                                    (MarkerShape::Circle, 0.9 * style::MARKER_RADIUS * u)
-                                };
-                                p.line(
-                                    Line::new(c.name.clone(), v.clone())
-                                        .color(c.color)
-                                        .width(style::PATH_WIDTH * u),
-                                );
-                                p.points(
-                                    Points::new(c.name.clone(), v)
-                                        .color(c.color)
-                                        .shape(shape)
-                                        .filled(true)
-                                        .radius(radius),
-                                );
-                            }
-                        });
-                });
-            }
+            // left: what each run reached for its work; right: the answer to the slide's
+            // question, per error asked for, how many times the fastest method's time each
+            // takes (the method at 1× is the one to pick, and it changes with the error)
+            ui.allocate_ui(egui::vec2(half, height), |ui| {
+                log_axes_plot(ui, "wp-evals", "f evaluations")
+                    .width(half)
+                    .height(height)
+                    .show(ui, |p| {
+                        for c in results {
+                            let v: Vec<[f64; 2]> = c
+                                .samples
+                                .iter()
+                                .filter(|s| s.error.is_finite() && s.error > 0.0)
+                                .map(|s| [(s.f_evals as f64).log10(), s.error.log10().max(-16.0)])
+                                .collect();
+                            // squares mark a tolerance sweep, dots a step-size sweep
+                            let (shape, radius) = if c.adaptive {
+                                (MarkerShape::Square, style::MARKER_RADIUS * u)
+                            } else {
+                                (MarkerShape::Circle, 0.9 * style::MARKER_RADIUS * u)
+                            };
+                            p.line(
+                                Line::new(c.name.clone(), v.clone())
+                                    .color(c.color)
+                                    .width(style::PATH_WIDTH * u),
+                            );
+                            p.points(
+                                Points::new(c.name.clone(), v)
+                                    .color(c.color)
+                                    .shape(shape)
+                                    .filled(true)
+                                    .radius(radius),
+                            );
+                        }
+                    });
+            });
+            ui.allocate_ui(egui::vec2(half, height), |ui| {
+                style::plot(ui, "wp-relative", "error asked for (time ÷ fastest)")
+                    .width(half)
+                    .height(height)
+                    .x_grid_spacer(egui_plot::uniform_grid_spacer(|_| [2.0, 2.0, 2.0]))
+                    .y_grid_spacer(egui_plot::uniform_grid_spacer(|_| [1.0, 1.0, 1.0]))
+                    .x_axis_formatter(|m, _| pow10_label(-m.value))
+                    .y_axis_formatter(|m, _| {
+                        let v = 10f64.powf(m.value).round();
+                        if v >= 1.0 { format!("{v}×") } else { String::new() }
+                    })
+                    .include_y(0.0)
+                    .show(ui, |p| {
+                        for (c, v) in results.iter().zip(&relative) {
+                            p.line(
+                                Line::new(c.name.clone(), v.clone())
+                                    .color(c.color)
+                                    .width(style::PATH_WIDTH * u),
+                            );
+                        }
+                    });
+            });
         });
     }
 
@@ -321,6 +337,14 @@ impl SlideWidget for WorkPrecision {
     /// `series,sweep,h_or_tol,f_evals,error`: every run, series by method key (`rk5` for the
     /// fixed-step fifth-order weights), `sweep` `h` or `tol`. Wall time is left out: it is the
     /// machine's, not the method's (and a modelled one in headless exports).
+    /// Each curve's best error, as the caption prints it.
+    fn readouts(&mut self) -> Vec<super::Readout> {
+        self.results
+            .iter()
+            .map(|c| super::Readout::new("best_error", c.key.clone(), c.best_error()))
+            .collect()
+    }
+
     fn csv(&mut self) -> Option<String> {
         self.ode.problem()?;
         let mut out = String::from("series,sweep,h_or_tol,f_evals,error\n");

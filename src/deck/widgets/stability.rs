@@ -14,18 +14,15 @@ pub struct StabilitySpec {
     /// Further methods, e.g. written out in the deck: `(name: "Ralston", a: [...], b: [...], c: [...])`.
     #[serde(default)]
     pub tableaux: Vec<Tableau>,
-    /// Visible window (re_min, re_max, im_min, im_max).
-    #[serde(default = "default_view")]
-    pub view: (f64, f64, f64, f64),
+    /// Visible window (re_min, re_max, im_min, im_max). Default: fitted to the regions (each
+    /// computed whole, `ode::stability_region`), with the origin.
+    #[serde(default)]
+    pub view: Option<(f64, f64, f64, f64)>,
     /// Show z = hλ for this λ (e.g. the oscillator's ±i) as a marker moving with h.
     #[serde(default)]
     pub lambda: Option<(f64, f64)>,
     #[serde(default = "default_h")]
     pub h: f64,
-}
-
-pub fn default_view() -> (f64, f64, f64, f64) {
-    (-3.5, 1.5, -3.0, 3.0)
 }
 
 pub fn default_h() -> f64 {

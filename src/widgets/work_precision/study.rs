@@ -162,10 +162,83 @@ impl Curve {
     }
 }
 
+/// The seconds `c` needs to reach an error of at most `target`: interpolated in log–log
+/// between the two runs that bracket it, `None` if no run got there.
+pub fn secs_to_reach(c: &Curve, target: f64) -> Option<f64> {
+    let mut pts: Vec<(f64, f64)> = c
+        .samples
+        .iter()
+        .filter(|s| s.error.is_finite() && s.error > 0.0 && s.secs > 0.0)
+        .map(|s| (s.error.log10(), s.secs.log10()))
+        .collect();
+    pts.sort_by(|a, b| b.0.total_cmp(&a.0));
+    let t = target.log10();
+    if pts.first().is_some_and(|p| p.0 <= t) {
+        return Some(10f64.powf(pts[0].1));
+    }
+    pts.windows(2).find(|w| w[0].0 > t && w[1].0 <= t).map(|w| {
+        let f = (t - w[0].0) / (w[1].0 - w[0].0);
+        10f64.powf(w[0].1 + f * (w[1].1 - w[0].1))
+    })
+}
+
+/// For each target error 10⁻², 10^-2.5, … 10⁻¹² (as x = −log10 of it): how many times longer
+/// each curve takes than the fastest curve that reaches it (log10 of the ratio, 0 = the
+/// fastest). The curve at 0 is the method to pick for that accuracy: the slide's answer to
+/// "why not RK5, RK6?" is where that changes.
+pub fn relative_cost(curves: &[Curve]) -> Vec<Vec<[f64; 2]>> {
+    let targets: Vec<f64> = (4..=24).map(|k| 10f64.powf(-(k as f64) / 2.0)).collect();
+    let costs: Vec<Vec<Option<f64>>> = curves
+        .iter()
+        .map(|c| targets.iter().map(|&t| secs_to_reach(c, t)).collect())
+        .collect();
+    let best: Vec<Option<f64>> = (0..targets.len())
+        .map(|k| costs.iter().filter_map(|c| c[k]).reduce(f64::min))
+        .collect();
+    costs
+        .iter()
+        .map(|c| {
+            targets
+                .iter()
+                .enumerate()
+                .filter_map(|(k, t)| Some([-t.log10(), (c[k]? / best[k]?).log10()]))
+                .collect()
+        })
+        .collect()
+}
+
 #[cfg(test)]
 pub(super) mod tests {
     use super::*;
     use std::path::Path as FsPath;
+
+    #[test]
+    fn relative_cost_puts_the_cheapest_method_at_zero_and_its_crossing_where_it_is() {
+        // a cheap low order (error 1e-2 for 1 s, 1e-4 for 100 s) and a dear high order
+        // (1e-2 for 10 s, 1e-10 for 100 s): loose errors favour the first, tight the second
+        let curve = |pts: &[(f64, f64)]| Curve {
+            key: String::new(),
+            name: String::new(),
+            color: egui::Color32::WHITE,
+            adaptive: false,
+            samples: pts
+                .iter()
+                .map(|&(secs, error)| Sample { h_or_tol: 1.0, f_evals: 1, secs, error })
+                .collect(),
+        };
+        let low = curve(&[(1.0, 1e-2), (100.0, 1e-4)]);
+        let high = curve(&[(10.0, 1e-2), (100.0, 1e-10)]);
+        assert_eq!(secs_to_reach(&low, 1e-3), Some(10.0));
+        assert_eq!(secs_to_reach(&low, 1e-6), None);
+        let r = relative_cost(&[low, high]);
+        // at 1e-2 (x = 2) the low order is the fastest, the high one 10× slower
+        assert_eq!(r[0][0], [2.0, 0.0]);
+        assert!((r[1][0][1] - 1.0).abs() < 1e-12);
+        // at 1e-4 (x = 4) both take 100 s … beyond, only the high order is there, at 0
+        let last = r[1].last().unwrap();
+        assert_eq!(*last, [10.0, 0.0]);
+        assert!(r[0].iter().all(|p| p[0] <= 4.0 + 1e-9));
+    }
 
     pub(in crate::widgets) fn deck() -> &'static FsPath {
         FsPath::new(concat!(env!("CARGO_MANIFEST_DIR"), "/slides/lecture.ron"))
