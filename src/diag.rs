@@ -61,14 +61,43 @@ impl Diagnostic {
     }
 
     /// Converts a `ron` parse error, which carries a 1-based position.
+    /// An unknown variant or field name (a misspelt widget, a field of another widget) gets a
+    /// "did you mean" when one expected name is close.
     pub fn from_ron(file: &Path, err: &ron::error::SpannedError) -> Self {
-        Self::new(
-            file,
-            err.span.start.line,
-            err.span.start.col,
-            err.code.to_string(),
-        )
+        use ron::error::Error;
+        let mut message = err.code.to_string();
+        if let Error::NoSuchEnumVariant {
+            expected, found, ..
+        }
+        | Error::NoSuchStructField {
+            expected, found, ..
+        } = &err.code
+            && let Some(hint) = did_you_mean(found, expected.iter().copied())
+        {
+            message = format!("{message}; {hint}");
+        }
+        Self::new(file, err.span.start.line, err.span.start.col, message)
     }
+}
+
+/// "did you mean `SlopeField`?" for the candidate closest to `found` (case aside), when it is
+/// close enough to be a slip: at most a third of its letters differ (at least one may), or
+/// one is the other with a different case or separators.
+pub fn did_you_mean<'a>(found: &str, candidates: impl IntoIterator<Item = &'a str>) -> Option<String> {
+    let fold = |s: &str| {
+        s.chars()
+            .filter(|c| *c != '_' && *c != '-')
+            .flat_map(char::to_lowercase)
+            .collect::<String>()
+    };
+    let found_folded = fold(found);
+    let (best, distance) = candidates
+        .into_iter()
+        .filter(|c| *c != found)
+        .map(|c| (c, strsim::levenshtein(&found_folded, &fold(c))))
+        .min_by_key(|(_, d)| *d)?;
+    let allowed = (found.chars().count() / 3).max(1);
+    (distance <= allowed).then(|| format!("did you mean `{best}`?"))
 }
 
 impl fmt::Display for Diagnostic {
@@ -93,6 +122,31 @@ impl std::error::Error for Diagnostic {}
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn did_you_mean_picks_the_close_name_and_nothing_far() {
+        let widgets = ["SlopeField", "StepConstruction", "Spiral", "Scene"];
+        let hint = |f: &str| did_you_mean(f, widgets.iter().copied());
+        assert_eq!(hint("SlopeFeild").as_deref(), Some("did you mean `SlopeField`?"));
+        assert_eq!(hint("slope_field").as_deref(), Some("did you mean `SlopeField`?"));
+        assert_eq!(hint("Spirl").as_deref(), Some("did you mean `Spiral`?"));
+        assert_eq!(hint("Histogram"), None);
+        assert_eq!(did_you_mean("x", ["y"]).as_deref(), Some("did you mean `y`?"));
+        assert_eq!(did_you_mean("beta", ["zeta", "omega"]).as_deref(), Some("did you mean `zeta`?"));
+    }
+
+    #[test]
+    fn an_unknown_ron_variant_gets_a_did_you_mean() {
+        #[derive(Debug, serde::Deserialize)]
+        #[allow(dead_code)]
+        enum W {
+            SlopeField,
+            Spiral,
+        }
+        let err = ron::from_str::<W>("SlopeFeld").unwrap_err();
+        let d = Diagnostic::from_ron(Path::new("deck.ron"), &err);
+        assert!(d.message.ends_with("did you mean `SlopeField`?"), "{d}");
+    }
 
     #[test]
     fn ron_error_keeps_line_and_column() {

@@ -5,6 +5,7 @@
 //! egui / wgpu ([`app`], [`widgets`], [`render`]). The simulation modules know nothing of
 //! egui or wgpu, so they are usable and testable with no window.
 
+pub mod bundled;
 pub mod diag;
 pub mod image_file;
 pub mod paths;

@@ -18,6 +18,8 @@ struct Cli {
 enum Command {
     /// Present a deck in a window (the default).
     Present(cli::present::Args),
+    /// Make a starter project (deck, problem file, tableau, picture, water scene) in DIR.
+    New(cli::new::Args),
     /// Render every slide to PNG and/or a PDF handout, headless.
     Export(cli::export::Args),
     /// Validate decks, scenes, shaders and problems; print file:line:col for each problem.
@@ -53,9 +55,13 @@ fn main() -> std::process::ExitCode {
         .with_writer(std::io::stderr)
         .init();
     let cli = Cli::parse();
+    if !matches!(cli.command, None | Some(Command::Present(_))) {
+        quiet_runtime_dir();
+    }
     let result = match cli.command {
         None => cli::present::run(cli::present::Args::default()),
         Some(Command::Present(a)) => cli::present::run(a),
+        Some(Command::New(a)) => cli::new::run(a),
         Some(Command::Export(a)) => cli::export::run(a),
         Some(Command::Check(a)) => cli::check::run(a),
         Some(Command::Solve(a)) => cli::solve::run(a),
@@ -73,5 +79,37 @@ fn main() -> std::process::ExitCode {
             eprintln!("lectern: {e:#}");
             std::process::ExitCode::FAILURE
         }
+    }
+}
+
+/// Mesa's Vulkan software driver (lavapipe) prints "XDG_RUNTIME_DIR is invalid or not set" when
+/// the variable names no folder (a server, CI, a `sudo` shell). The command-line tools need no
+/// session folder, so they get a private one and the line goes away; the window keeps the
+/// session's own (Wayland needs the real one).
+fn quiet_runtime_dir() {
+    let valid = std::env::var_os("XDG_RUNTIME_DIR")
+        .map(std::path::PathBuf::from)
+        .is_some_and(|d| d.is_absolute() && d.is_dir());
+    if valid {
+        return;
+    }
+    #[cfg(unix)]
+    let (dir, made) = {
+        use std::os::unix::fs::{DirBuilderExt, MetadataExt};
+        // SAFETY: getuid has no preconditions and cannot fail.
+        let uid = unsafe { libc::getuid() };
+        let dir = std::env::temp_dir().join(format!("lectern-runtime-{uid}"));
+        let _ = std::fs::DirBuilder::new().mode(0o700).create(&dir);
+        // only a folder of ours that nobody else may read is used (another user could have
+        // made one under that name first)
+        let ours = std::fs::symlink_metadata(&dir)
+            .is_ok_and(|m| m.is_dir() && m.uid() == uid && m.mode() & 0o077 == 0);
+        (dir, ours)
+    };
+    #[cfg(not(unix))]
+    let (dir, made) = (std::path::PathBuf::new(), false);
+    if made {
+        // SAFETY: called at the start of `main`, before any thread is started.
+        unsafe { std::env::set_var("XDG_RUNTIME_DIR", &dir) };
     }
 }

@@ -53,9 +53,13 @@ impl fmt::Display for PathError {
 impl std::error::Error for PathError {}
 
 /// The project folder for a file (deck, scene, ink or tweak file) at `file`: the parent of its
-/// `slides/` or `scenes/` folder when it sits in one, else the file's own folder.
+/// `slides/` or `scenes/` folder when it sits in one, else the file's own folder. The file's
+/// path is made absolute first (symbolic links followed where it exists), so the answer does not
+/// depend on how the path was typed: `~/talk/slides/a.ron`, `./slides/a.ron` and, from inside
+/// `slides/`, `a.ron` all give `~/talk`.
 pub fn project_root(file: &Path) -> PathBuf {
-    let dir = file.parent().unwrap_or(Path::new(""));
+    let file = absolute(file);
+    let dir = file.parent().unwrap_or(Path::new("/"));
     let in_project_subdir = dir
         .file_name()
         .is_some_and(|n| n == "slides" || n == "scenes");
@@ -64,18 +68,29 @@ pub fn project_root(file: &Path) -> PathBuf {
     } else {
         dir
     };
-    if root.as_os_str().is_empty() {
-        PathBuf::from(".")
-    } else {
-        root.to_path_buf()
+    root.to_path_buf()
+}
+
+/// `file` as an absolute path: canonical when it (or its folder) exists, else lexically
+/// against the current directory.
+fn absolute(file: &Path) -> PathBuf {
+    if let Ok(real) = file.canonicalize() {
+        return real;
+    }
+    let parent = file.parent().filter(|p| !p.as_os_str().is_empty());
+    let dir = parent.unwrap_or(Path::new("."));
+    match (dir.canonicalize(), file.file_name()) {
+        (Ok(real_dir), Some(name)) => real_dir.join(name),
+        _ => lexical(file),
     }
 }
 
 /// Resolves `written` (as it appears in the file at `naming_file`) against that file's folder,
 /// confined to [`project_root`]`(naming_file)`.
 pub fn resolve_for(naming_file: &Path, written: &str) -> Result<PathBuf, PathError> {
-    let base = naming_file.parent().unwrap_or(Path::new(""));
-    resolve(base, &project_root(naming_file), written)
+    let naming_file = absolute(naming_file);
+    let base = naming_file.parent().unwrap_or(Path::new("/"));
+    resolve(base, &project_root(&naming_file), written)
 }
 
 /// Like [`resolve_for`], for a file named from inside the folder `naming_dir` (a widget knows
@@ -194,7 +209,8 @@ mod tests {
             project_root(Path::new("/tmp/talk/deck.ron")),
             Path::new("/tmp/talk")
         );
-        assert_eq!(project_root(Path::new("deck.ron")), Path::new("."));
+        let cwd = std::env::current_dir().unwrap().canonicalize().unwrap();
+        assert_eq!(project_root(Path::new("deck.ron")), cwd);
     }
 
     #[test]

@@ -242,11 +242,13 @@ fn export_data_and_check_handle_the_adaptive_pairs() {
     let vern9: Vec<&str> = wp.lines().filter(|l| l.starts_with("vern9,tol,")).collect();
     assert_eq!(vern9.len(), 12, "{wp}");
     assert!(vern9[0].starts_with("vern9,tol,0.01,"), "{}", vern9[0]);
-    // a misspelt pair stops the deck with its position and the names it could have been
+    // a misspelt pair stops its slide (an error slide in its place) with its position and the
+    // names it could have been
     let (_dir, bad) = project(&format!(
         "Widget(Convergence(({FORCED_INLINE}, methods: [Rk4, Vern10])))"
     ));
-    let e = load_deck(&bad).unwrap_err().to_string();
+    let deck = load_deck(&bad).unwrap();
+    let e = deck.broken_slides[0].diagnostic.to_string();
     assert!(e.contains("talk.ron:") && e.contains("Vern10"), "{e}");
     assert!(e.contains("Dop853"), "{e}");
 }
@@ -420,11 +422,13 @@ fn hostile_input_gives_a_message_or_a_diverged_marker() {
 }
 
 /// The presenter's editor, driven like a lecturer: the audience view has no text field; on the
-/// presenter view (P) typing a valid equation changes the plot's data keystroke by keystroke,
-/// an invalid one keeps it and shows the error with its column, Ctrl+S writes the last good
-/// equation into the deck (only those bytes), and the file re-parses to it.
+/// presenter view (P) a typed equation is a draft (the slide's plot, which the room sees, is
+/// unchanged; the presenter sees a preview) until Enter, which makes the plot's data the typed
+/// equation's and drops the exact solution that belonged to the old one; an invalid edit keeps
+/// the plot and shows the error with its column, Esc puts the field back; Ctrl+S writes the
+/// shown equation into the deck (only those bytes), and the file re-parses to it.
 #[test]
-fn typing_on_the_presenter_view_changes_the_plot_and_ctrl_s_writes_it_back() {
+fn typing_on_the_presenter_view_changes_the_plot_on_enter_and_ctrl_s_writes_it_back() {
     use egui_kittest::kittest::Queryable;
     let (_dir, path) = project(&format!(
         "Widget(SlopeField(({FORCED_INLINE}, start: (0.0, 1.5), h: 0.5, t_end: 8.0, view: (0.0, 8.0, -1.5, 2.0))))"
@@ -496,6 +500,12 @@ fn typing_on_the_presenter_view_changes_the_plot_and_ctrl_s_writes_it_back() {
         "P while typing is a letter: the presenter view stays"
     );
 
+    // a draft: the room (the slide's own widget) still sees the old equation, the presenter
+    // a preview of the typed one
+    assert_eq!(euler(&mut h), start, "the room sees nothing before Enter");
+    assert!(h.query_by_label_contains("preview (Enter shows it").is_some());
+    h.key_press(egui::Key::Enter);
+    h.run_steps(3);
     let after = euler(&mut h);
     let want: Vec<f64> = {
         let f = |t: f64, x: f64| -2.0 * x + (3.0 * t).cos();
@@ -511,8 +521,23 @@ fn typing_on_the_presenter_view_changes_the_plot_and_ctrl_s_writes_it_back() {
     for (a, b) in after.iter().zip(&want) {
         assert!((a - b).abs() < 1e-12, "{a} vs {b}");
     }
+    // the file's exact solution solved `cos(t) - x`: it is dropped, the error is measured
+    // against a fine reference, and the presenter is told
+    {
+        let state = h.state_mut().slide_state(0).unwrap();
+        let d = state.widget_at(&[0]).unwrap().data().unwrap();
+        let names: Vec<&str> = d.series.iter().map(|(n, _)| n.as_str()).collect();
+        assert!(names.contains(&"reference") && !names.contains(&"exact"), "{names:?}");
+    }
+    assert!(h.query_by_label_contains("exact solution was dropped").is_some());
+    assert!(h.query_by_label_contains("preview (Enter shows it").is_none());
     // an invalid edit (`*(` appended: every keystroke leaves it unparsable): the plot keeps
     // the last good equation, the error shows its column (the end, 18)
+    h.get_all_by_role(egui::accesskit::Role::TextInput)
+        .next()
+        .unwrap()
+        .focus();
+    h.run_steps(2);
     h.key_press(egui::Key::End);
     h.run_steps(1);
     for c in "*(".chars() {
@@ -530,6 +555,16 @@ fn typing_on_the_presenter_view_changes_the_plot_and_ctrl_s_writes_it_back() {
         .unwrap();
     assert_eq!(field.value().as_deref(), Some("-2*x + cos(3*t)*("));
     assert!(h.query_by_label_contains("column 18: in rhs[0]").is_some());
+    // Esc: the field back to the equation shown, the error gone
+    h.key_press(egui::Key::Escape);
+    h.run_steps(3);
+    let field = h
+        .get_all_by_role(egui::accesskit::Role::TextInput)
+        .next()
+        .unwrap();
+    assert_eq!(field.value().as_deref(), Some(typed));
+    assert!(h.query_by_label_contains("column 18").is_none());
+    assert_eq!(euler(&mut h), after);
     // Ctrl+S writes the last good equation into the deck, changing only those bytes
     h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::S);
     h.run_steps(2);

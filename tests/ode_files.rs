@@ -172,7 +172,8 @@ fn shipped_tableaux_validate_and_malformed_ones_are_rejected_with_positions() {
 fn divergence_is_data_for_huge_steps_and_nan_states() {
     let p = Problem::load("slides/problems/harmonic.ron").unwrap();
     for m in Method::ALL {
-        let sol = if m.is_adaptive() {
+        // the stiff solvers take the fixed huge steps too (they have a fixed-step form)
+        let sol = if m.is_adaptive() && !m.is_implicit() {
             solve_adaptive(&p, 0.0, &[f64::NAN, 0.0], 10.0, Adaptive::default())
         } else {
             // ten steps of h = 1e9

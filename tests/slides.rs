@@ -238,3 +238,205 @@ fn every_coloured_text_is_readable_on_both_themes() {
     failures.dedup();
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// Every text a slide draws, as (text, screen rect, clip rect).
+fn text_boxes(output: &egui::FullOutput) -> Vec<(String, egui::Rect, egui::Rect)> {
+    use egui::epaint::Shape;
+    fn walk(shape: &Shape, clip: egui::Rect, out: &mut Vec<(String, egui::Rect, egui::Rect)>) {
+        match shape {
+            Shape::Vec(v) => v.iter().for_each(|s| walk(s, clip, out)),
+            // row by row: a label in a wrapping row is laid out from the row's left edge
+            // (its galley's rect covers that leading space), so the rows' own rects are where
+            // the glyphs are
+            Shape::Text(t) if t.angle == 0.0 => {
+                for row in &t.galley.rows {
+                    let text: String = row.row.glyphs.iter().map(|g| g.chr).collect();
+                    if !text.trim().is_empty() {
+                        let rect = row.rect_without_leading_space().translate(t.pos.to_vec2());
+                        out.push((text, rect, clip));
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    let mut out = Vec::new();
+    for c in &output.shapes {
+        walk(&c.shape, c.clip_rect, &mut out);
+    }
+    out
+}
+
+/// The audience reads every word: on every bundled slide, at 1280×720 and 1920×1080, in both
+/// themes, no two texts overlap (labels, readouts, tick labels, legends, captions, footer),
+/// no text is cut by its clip rect (a readout past a column's edge, a line under the footer),
+/// and every widget stays inside the slot the slide gave it, and the slot inside the slide's
+/// content area (above the footer).
+#[test]
+fn no_text_overlaps_and_every_widget_stays_in_its_slot() {
+    work_precision::DETERMINISTIC.store(true, Ordering::Relaxed);
+    let mut failures = Vec::new();
+    let mut texts_checked = 0;
+    let mut widgets_checked = 0;
+    for size in [egui::vec2(1280.0, 720.0), egui::vec2(1920.0, 1080.0)] {
+        for theme in [lectern::deck::Theme::Dark, lectern::deck::Theme::Light] {
+            let mut d = deck();
+            d.theme = theme;
+            let deck = Arc::new(d);
+            for n in 0..deck.slides.len() {
+                let shown = deck.clone();
+                let mut state = SlideState::default();
+                let mut h = Harness::builder().with_size(size).build_ui(move |ui| {
+                    slide_ui(ui, &shown, n, &mut state);
+                });
+                h.run_steps(3);
+                let at = format!("{}×{} {theme:?} slide {}", size.x, size.y, n + 1);
+                let boxes = text_boxes(h.output());
+                texts_checked += boxes.len();
+                for (i, (a, ra, clip)) in boxes.iter().enumerate() {
+                    // half a point of slack: rects of adjacent rows may touch
+                    if !clip.expand(0.5).contains_rect(*ra) {
+                        failures.push(format!("{at}: {a:?} at {ra:?} is cut by its clip {clip:?}"));
+                    }
+                    for (b, rb, _) in &boxes[i + 1..] {
+                        let overlap = ra.intersect(*rb);
+                        if overlap.width() > 1.0 && overlap.height() > 1.0 {
+                            failures.push(format!("{at}: {a:?} overlaps {b:?} ({ra:?} / {rb:?})"));
+                        }
+                    }
+                }
+                for w in lectern::app::drawn_widgets(&h.ctx) {
+                    if w.slide != n {
+                        continue;
+                    }
+                    widgets_checked += 1;
+                    if !w.slot.expand(0.5).contains_rect(w.drawn) {
+                        failures.push(format!(
+                            "{at}: {} {:?} drew {:?} outside its slot {:?}",
+                            w.kind, w.path, w.drawn, w.slot
+                        ));
+                    }
+                    if !w.content.expand(0.5).contains_rect(w.slot) {
+                        failures.push(format!(
+                            "{at}: {} {:?} has a slot {:?} outside the content area {:?}",
+                            w.kind, w.path, w.slot, w.content
+                        ));
+                    }
+                }
+            }
+        }
+    }
+    assert!(texts_checked > 1000 && widgets_checked >= 4 * 20, "{texts_checked} {widgets_checked}");
+    failures.dedup();
+    assert!(failures.is_empty(), "{} problems:\n{}", failures.len(), failures.join("\n"));
+}
+
+/// A thumbnail (the overview's, the presenter's "next") is the slide scaled down: the slide
+/// drawn into a 480×270 rect equals its 1920×1080 rendering box-filtered to that size, within
+/// a tolerance that small text's hinting passes and that unscaled markers, lines and in-plot
+/// labels (giant dots, a blob of labels) fail. The scene slides are left out (their 3-D views
+/// render at the view's own resolution).
+#[test]
+fn thumbnails_are_the_slide_scaled_down() {
+    work_precision::DETERMINISTIC.store(true, Ordering::Relaxed);
+    let deck = deck();
+    let mut gpu = lectern::app::OffscreenRenderer::software_first().unwrap();
+    // one point per pixel at both sizes, as the overview draws a thumbnail into a small rect
+    // of the window: only the slide's own scale differs
+    let mut render = |n: usize, size: egui::Vec2| {
+        let mut state = SlideState::default();
+        gpu.render([size.x as u32, size.y as u32], 1.0, |ui| {
+            slide_ui(ui, &deck, n, &mut state);
+        })
+        .unwrap()
+    };
+    const K: u32 = 4;
+    let mut report = Vec::new();
+    let mut failures = Vec::new();
+    for (n, slide) in deck.slides.iter().enumerate() {
+        if slide.widgets().iter().any(|(_, w)| w.kind() == "scene") {
+            continue;
+        }
+        let full = render(n, egui::vec2(1920.0, 1080.0));
+        let small = render(n, egui::vec2(480.0, 270.0));
+        let (w, h) = small.dimensions();
+        assert_eq!(full.dimensions(), (w * K, h * K));
+        let mut sum = 0.0f64;
+        let mut far = 0usize;
+        for y in 0..h {
+            for x in 0..w {
+                let mut acc = [0.0f64; 3];
+                for dy in 0..K {
+                    for dx in 0..K {
+                        let p = full.get_pixel(x * K + dx, y * K + dy);
+                        for c in 0..3 {
+                            acc[c] += f64::from(p[c]);
+                        }
+                    }
+                }
+                let q = small.get_pixel(x, y);
+                let d = (0..3)
+                    .map(|c| (acc[c] / f64::from(K * K) - f64::from(q[c])).abs())
+                    .fold(0.0, f64::max);
+                sum += d;
+                if d > 96.0 {
+                    far += 1;
+                }
+            }
+        }
+        if let Ok(dir) = std::env::var("THUMBNAIL_DUMP") {
+            small.save(format!("{dir}/small-{:02}.png", n + 1)).unwrap();
+            full.save(format!("{dir}/full-{:02}.png", n + 1)).unwrap();
+        }
+        let mean = sum / f64::from(w * h);
+        let far_frac = far as f64 / f64::from(w * h);
+        report.push(format!("slide {}: mean {mean:.2}, far {:.3} %", n + 1, 100.0 * far_frac));
+        if mean > MEAN_MAX || far_frac > FAR_MAX {
+            failures.push(n + 1);
+        }
+    }
+    println!("{}", report.join("\n"));
+    assert!(failures.is_empty(), "slides {failures:?}:\n{}", report.join("\n"));
+}
+/// Bounds of [`thumbnails_are_the_slide_scaled_down`] (channel levels 0…255): measured on the
+/// bundled deck, see docs/slides.md.
+const MEAN_MAX: f64 = 8.5;
+const FAR_MAX: f64 = 0.025;
+
+/// `controls: Presenter`: the slide (projector, export) shows the plot and its values, not the
+/// sliders and checkboxes; the default deck shows them; `force_controls` (the `C` key) brings
+/// them back.
+#[test]
+fn controls_presenter_shows_values_not_sliders() {
+    use egui::accesskit::Role;
+    use egui_kittest::kittest::Queryable;
+    use lectern::app::{SlideOptions, slide_ui_with};
+    let slope_field = 3; // slide 4: h slider, three method checkboxes, "exact"
+    let run = |controls: lectern::deck::Controls, force: bool| {
+        let mut d = deck();
+        d.controls = controls;
+        let mut state = SlideState::default();
+        let mut h = Harness::builder().with_size(SIZE).build_ui(move |ui| {
+            let options = SlideOptions {
+                force_controls: force,
+                ..SlideOptions::default()
+            };
+            slide_ui_with(ui, &d, slope_field, &mut state, options);
+        });
+        h.run_steps(3);
+        let sliders = h.query_all_by_role(Role::Slider).count();
+        let boxes = h.query_all_by_role(Role::CheckBox).count();
+        let texts: Vec<String> = text_boxes(h.output()).into_iter().map(|t| t.0).collect();
+        (sliders, boxes, texts)
+    };
+    let (sliders, boxes, _) = run(lectern::deck::Controls::Slide, false);
+    assert!(sliders >= 1 && boxes >= 4, "{sliders} sliders, {boxes} checkboxes");
+    let (sliders, boxes, texts) = run(lectern::deck::Controls::Presenter, false);
+    assert_eq!((sliders, boxes), (0, 0), "the projector shows no controls");
+    assert!(texts.iter().any(|t| t.contains("h = 0.500")), "{texts:?}");
+    for legend in ["Euler", "Midpoint", "RK4", "exact"] {
+        assert!(texts.iter().any(|t| t.trim() == legend), "{legend} in {texts:?}");
+    }
+    let (sliders, _, _) = run(lectern::deck::Controls::Presenter, true);
+    assert!(sliders >= 1, "C brings the controls back");
+}

@@ -98,6 +98,7 @@ impl LecternApp {
                 ctx.send_viewport_cmd(egui::ViewportCommand::Fullscreen(!full));
             }
             ToggleBlack => self.black = !self.black,
+            Quit => ctx.send_viewport_cmd(egui::ViewportCommand::Close),
             ToggleMode => {
                 self.mode = match self.mode {
                     Mode::Slides => Mode::Scene,

@@ -15,4 +15,7 @@ pub(crate) struct BlockCtx<'a> {
     /// slide's index in it, to place a formula's error at its line.
     pub deck_file: Option<&'a Path>,
     pub slide_index: usize,
+    /// The slide's content area (the canvas inside its margins, above the footer): every
+    /// block's slot must stay inside it.
+    pub content: egui::Rect,
 }

@@ -32,7 +32,10 @@ pub(crate) fn blocks_ui(
         .filter_map(|(i, b)| measure(ui, b, &[path, &[i]].concat(), width, bctx))
         .sum();
     let flexible = blocks.iter().filter(|b| is_flexible(b)).count();
-    let gaps = gap * blocks.len().saturating_sub(1) as f32;
+    // each block also gets egui's item spacing after the space before it: count it, or the
+    // last widget's slot reaches under the footer
+    let gaps = gap * blocks.len().saturating_sub(1) as f32
+        + ui.spacing().item_spacing.y * blocks.len() as f32;
     let flex_h = if flexible > 0 {
         ((ui.available_height() - fixed - gaps) / flexible as f32).max(look.scaled(240.0))
     } else {
@@ -155,6 +158,15 @@ fn block_ui(
             child.set_clip_rect(rect.intersect(ui.clip_rect()));
             let widget = state.widget(path, spec, bctx.deck_file);
             widget.ui(&mut child);
+            super::slide_state::record_drawn_widget(
+                ui.ctx(),
+                bctx.slide_index,
+                path,
+                spec.kind(),
+                rect,
+                child.min_rect(),
+                bctx.content,
+            );
             for problem in widget.problems() {
                 state.note_problem(format!("{} widget {path:?}: {problem}", spec.kind()));
             }
@@ -170,6 +182,21 @@ fn block_ui(
             };
             let top_left = ui.cursor().min;
             let mut used = 0.0f32;
+            // What each column stacks above its first widget (a caption that wraps to two
+            // lines in one column and not in the other): the shorter leads are padded at the
+            // top, so the widgets beside each other start (and end) at the same height.
+            // (Columns without a widget neither pad nor are padded.)
+            let lead = |c: usize, col: &[Block]| -> f32 {
+                let Some(first) = col.iter().position(is_flexible) else {
+                    return 0.0;
+                };
+                (0..first)
+                    .filter_map(|i| measure(ui, &col[i], &[path, &[c, i]].concat(), cw, bctx))
+                    .map(|h| h + look.scaled(size::BLOCK_GAP) + ui.spacing().item_spacing.y)
+                    .sum()
+            };
+            let leads: Vec<f32> = cols.iter().enumerate().map(|(c, col)| lead(c, col)).collect();
+            let max_lead = leads.iter().copied().fold(0.0, f32::max);
             for (c, col) in cols.iter().enumerate() {
                 let rect =
                     Rect::from_min_size(top_left + vec2(c as f32 * (cw + gap), 0.0), vec2(cw, h));
@@ -181,6 +208,9 @@ fn block_ui(
                 );
                 let mut here = path.to_vec();
                 here.push(c);
+                if col.iter().any(is_flexible) {
+                    child.add_space(max_lead - leads[c]);
+                }
                 blocks_ui(&mut child, col, &here, bctx, state, Align::Min);
                 used = used.max(child.min_rect().height());
             }

@@ -53,6 +53,9 @@ pub enum Action {
     UndoInk,
     /// `Shift+D`: remove all ink on this slide.
     ClearInk,
+    /// `Ctrl+Q`: close the window (also while typing in a field). A bare `Q` does not: one
+    /// stray key must not end a lecture.
+    Quit,
 }
 
 /// What the keys mean right now: digits go to the slide number while typing one after `G`,
@@ -75,7 +78,10 @@ pub const HELP: &[(&str, &str)] = &[
     ("B", "black screen"),
     ("Tab", "slides ↔ water scene"),
     ("P", "presenter view (notes, timer, next slide)"),
-    ("C", "controls on the audience screen"),
+    ("C", "controls on the audience screen (also widget controls with `controls: Presenter`)"),
+    ("- +", "widget: step size h down / up"),
+    ("[ ]", "widget: step back / forward (construction stage, Taylor order, fish step)"),
+    ("drag", "widget: move a slope field's start point, orbit a 3-D view"),
     ("T Shift+T", "pause / reset the timer"),
     ("R", "reset this slide's tweaks"),
     ("Ctrl+1…9 1…9", "store / recall a tweak bookmark"),
@@ -85,6 +91,7 @@ pub const HELP: &[(&str, &str)] = &[
     ("1…5 (drawing)", "ink colour"),
     ("Ctrl+Z Shift+D", "undo a stroke / clear the slide's ink"),
     ("?", "this list"),
+    ("Ctrl+Q", "quit"),
     ("Esc", "close overlays, stop drawing, fullscreen"),
 ];
 
@@ -103,6 +110,12 @@ pub fn while_editing(event: &Event) -> Option<Action> {
             modifiers,
             ..
         } if modifiers.command || modifiers.ctrl => Some(Action::WriteBack),
+        Event::Key {
+            key: Key::Q,
+            pressed: true,
+            modifiers,
+            ..
+        } if modifiers.command || modifiers.ctrl => Some(Action::Quit),
         _ => None,
     }
 }
@@ -163,6 +176,7 @@ fn action(event: &Event, mode: KeyMode) -> Option<Action> {
                 return match (key, digit) {
                     (_, Some(d @ 1..=9)) => Some(BookmarkStore(d)),
                     (Key::S, _) => Some(WriteBack),
+                    (Key::Q, _) => Some(Quit),
                     (Key::Z, _) if !modifiers.shift => Some(UndoInk),
                     _ => None,
                 };
@@ -233,6 +247,18 @@ pub fn press(key: Key, modifiers: Modifiers) -> Event {
 mod tests {
     use super::*;
     use Action::*;
+
+    #[test]
+    fn ctrl_q_quits_and_is_in_the_help_a_bare_q_does_nothing() {
+        let ctrl = Modifiers::CTRL;
+        assert_eq!(
+            actions(&[press(Key::Q, ctrl)], KeyMode::Normal),
+            vec![Quit]
+        );
+        assert_eq!(while_editing(&press(Key::Q, ctrl)), Some(Quit));
+        assert!(actions(&[press(Key::Q, Modifiers::NONE)], KeyMode::Normal).is_empty());
+        assert!(HELP.iter().any(|(k, what)| *k == "Ctrl+Q" && *what == "quit"));
+    }
 
     #[test]
     fn clicker_and_arrows() {

@@ -243,6 +243,8 @@ impl LecternApp {
                 let options = SlideOptions {
                     drawing,
                     background: fill,
+                    // `C` brings the widgets' controls onto the audience screen
+                    force_controls: self.show_controls,
                     ..SlideOptions::default()
                 };
                 let resp = slide_ui_with(ui, deck, index, self.states.slide(slide), options);

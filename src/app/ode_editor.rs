@@ -1,8 +1,10 @@
 //! Typing the equation live, on the presenter's side only: for each ODE widget of the current
 //! slide, one text field per right-hand side (and per component of the exact solution, if the
-//! problem has one). A keystroke that compiles replaces the equation for the next frame; one
-//! that does not keeps the last good equation and shows the error under the field, with a caret
-//! at its column. Ctrl+S writes the typed text back (see [`super::tweaks::write_back`]).
+//! problem has one). What is typed is a draft: the room keeps seeing the last equation shown
+//! until Enter (so a half-typed `-2` never reaches the projector), and Esc puts the fields back.
+//! While drafts compile, a preview copy of the widget under the fields follows every keystroke;
+//! while they do not, the error shows under its field with a caret at its column. Ctrl+S writes
+//! the shown equation back (see [`super::tweaks::write_back`]).
 
 use egui::{Color32, RichText};
 
@@ -14,10 +16,32 @@ const ERROR: Color32 = Color32::from_rgb(0xff, 0x9c, 0x8f);
 
 /// The editors of every ODE widget on the slide (nothing if it has none).
 pub fn ode_editor_ui(ui: &mut egui::Ui, state: &mut SlideState) {
-    for (path, kind, ode) in state.odes() {
-        ui.push_id(("ode-editor", &path), |ui| equation_ui(ui, kind, ode));
+    let paths: Vec<(Vec<usize>, &'static str)> =
+        (state.odes().into_iter()).map(|(p, k, _)| (p, k)).collect();
+    for (path, kind) in paths {
+        ui.push_id(("ode-editor", &path), |ui| {
+            if let Some(ode) = state.widget_at(&path).and_then(|w| w.ode()) {
+                equation_ui(ui, kind, ode);
+            }
+            if let Some(preview) = state.preview_widget(&path) {
+                preview_ui(ui, preview);
+            }
+        });
         ui.add_space(6.0);
     }
+}
+
+/// Height of the presenter's preview of a typed equation, in points.
+const PREVIEW_HEIGHT: f32 = 180.0;
+
+/// The preview copy of a widget, drawing the drafts' equation (the room does not see it).
+fn preview_ui(ui: &mut egui::Ui, widget: &mut dyn crate::widgets::SlideWidget) {
+    ui.label(RichText::new("preview (Enter shows it to the room, Esc reverts):").italics());
+    let width = ui.available_width();
+    ui.allocate_ui(egui::vec2(width, PREVIEW_HEIGHT), |ui| {
+        ui.set_max_height(PREVIEW_HEIGHT);
+        ui.push_id("preview", |ui| widget.ui(ui));
+    });
 }
 
 /// The text fields of one widget's equation.
@@ -33,9 +57,17 @@ pub fn equation_ui(ui: &mut egui::Ui, kind: &str, ode: &mut LiveOde) {
     } else {
         format!("{kind}: {}", def.name)
     };
-    ui.label(RichText::new(format!("{name} (type to change the equation)")).strong());
+    ui.label(
+        RichText::new(format!(
+            "{name} (type, then Enter to show it; Esc reverts)"
+        ))
+        .strong(),
+    );
     if let Some(e) = ode.load_error() {
         ui.label(RichText::new(e).color(ERROR));
+    }
+    if let Some(note) = ode.dropped_exact() {
+        ui.label(RichText::new(note).italics());
     }
     let (rhs, exact) = ode.fields();
     let rows: Vec<(ExprSlot, String, String)> = rhs
@@ -63,10 +95,27 @@ pub fn equation_ui(ui: &mut egui::Ui, kind: &str, ode: &mut LiveOde) {
                 .id(id)
                 .font(mono.clone())
                 .char_limit(crate::ode::problem::MAX_EXPR_CHARS)
+                // the field keeps Esc (egui would drop the focus before the field saw it):
+                // here Esc means "revert", then the field lets go
+                .event_filter(egui::EventFilter {
+                    horizontal_arrows: true,
+                    vertical_arrows: true,
+                    escape: true,
+                    ..Default::default()
+                })
                 .desired_width(ui.available_width());
             // named by its label, for screen readers (and the UI tests' queries)
-            if ui.add(edit).labelled_by(name.id).changed() {
-                ode.set_expr(slot, &text);
+            let field = ui.add(edit).labelled_by(name.id);
+            if field.changed() {
+                ode.set_draft(slot, &text);
+            }
+            // a single-line field gives up the keyboard on Enter
+            if field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter)) {
+                ode.commit();
+            }
+            if field.has_focus() && ui.input(|i| i.key_pressed(egui::Key::Escape)) {
+                ode.revert();
+                field.surrender_focus();
             }
         });
         // the error of the text as it is now (set_expr may just have changed it)
@@ -77,6 +126,9 @@ pub fn equation_ui(ui: &mut egui::Ui, kind: &str, ode: &mut LiveOde) {
         if let Some((msg, col)) = now {
             error_ui(ui, &text, &msg, col);
         }
+    }
+    if ode.has_draft() {
+        ui.label(RichText::new("not shown to the room yet: Enter shows it, Esc reverts").italics());
     }
 }
 
@@ -91,7 +143,7 @@ fn error_ui(ui: &mut egui::Ui, text: &str, msg: &str, col: usize) {
     };
     ui.label(
         RichText::new(format!(
-            "{shown}{caret}\ncolumn {col}: {msg} (the last good equation stays)"
+            "{shown}{caret}\ncolumn {col}: {msg} (the room keeps the equation shown)"
         ))
         // a family, not a text style: the presenter panel overrides text styles, and the caret
         // must line up under the character

@@ -166,7 +166,8 @@ pub fn overview_ui(
                 egui::FontId::proportional(tag),
                 palette.text,
             );
-            let at = rect.left_top() + egui::vec2(tag * 0.4, tag * 0.3);
+            // top right: the title starts at the left and must stay readable
+            let at = rect.right_top() + egui::vec2(-galley.size().x - tag * 0.4, tag * 0.3);
             let bg = egui::Rect::from_min_size(at, galley.size()).expand(tag * 0.25);
             ui.painter().rect_filled(bg, tag * 0.2, palette.letterbox);
             ui.painter().galley(at, galley, palette.text);

@@ -66,11 +66,9 @@ impl SceneMode {
         scene_path: &Path,
         wake: impl Fn() + Send + 'static,
     ) -> Result<Self> {
-        let root = scene_path
-            .parent()
-            .and_then(Path::parent)
-            .unwrap_or(Path::new(""));
-        let shader_dir = root.join(crate::render::SHADER_DIR);
+        let shader_dir = crate::bundled::shader_folder_for_scene(scene_path)
+            .map_err(anyhow::Error::msg)?
+            .dir;
         let scene_file = LiveFile::open(scene_path, scene::parse_scene);
         let scene = match (scene_file.value(), scene_file.error()) {
             (Some(s), _) => s.clone(),

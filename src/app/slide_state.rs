@@ -15,6 +15,9 @@ use crate::widgets::{ParamSnapshot, SlideWidget, WidgetSpec, params};
 #[derive(Default)]
 pub struct SlideState {
     pub(crate) widgets: HashMap<Vec<usize>, WidgetSlot>,
+    /// The presenter's previews of widgets whose equation has drafts not shown to the room
+    /// yet: a copy of the widget drawing the drafts' equation, by block path.
+    previews: HashMap<Vec<usize>, (crate::ode::problem::ProblemDef, WidgetSlot)>,
     /// Problems found while drawing (a formula that does not typeset), from the last frame:
     /// for the presenter's screen, never the audience's.
     problems: Vec<String>,
@@ -91,6 +94,30 @@ impl SlideState {
                 slot.widget.ode().map(|o| (path.clone(), kind, o))
             })
             .collect()
+    }
+
+    /// The presenter's preview of the widget at `path` while its equation has drafts that
+    /// compile: a copy with the live tweaks and the drafts' equation, remade when the drafts
+    /// change. `None` (and the copy forgotten) without such drafts.
+    pub fn preview_widget(&mut self, path: &[usize]) -> Option<&mut dyn SlideWidget> {
+        let deck_path = self.deck_path.clone();
+        let live = self.widgets.get_mut(path)?;
+        let Some((def, _)) = live.widget.ode().and_then(|o| o.draft_problem()) else {
+            self.previews.remove(path);
+            return None;
+        };
+        let fresh = !matches!(self.previews.get(path), Some((d, _)) if *d == def);
+        if fresh {
+            let mut widget = live.spec.instantiate_in(deck_path.as_deref());
+            carry_tweaks(&live.spec, live.widget.as_mut(), widget.as_mut(), deck_path.as_deref());
+            widget.ode()?.show_def(def.clone());
+            let slot = WidgetSlot {
+                spec: live.spec.clone(),
+                widget,
+            };
+            self.previews.insert(path.to_vec(), (def, slot));
+        }
+        Some(self.previews.get_mut(path)?.1.widget.as_mut())
     }
 
     /// The widget at block path `path`, if it was made.
@@ -309,4 +336,55 @@ fn same_file(a: &std::path::Path, b: &std::path::Path) -> bool {
             (Ok(x), Ok(y)) => x == y,
             _ => false,
         }
+}
+
+/// Where a widget was drawn in the last pass: the slot the slide gave it, the rect it used,
+/// and the slide's content area (for the test that every widget stays inside its slot and
+/// every slot inside the slide, above the footer).
+#[derive(Debug, Clone, PartialEq)]
+pub struct DrawnWidget {
+    pub slide: usize,
+    pub path: Vec<usize>,
+    pub kind: &'static str,
+    pub slot: Rect,
+    pub drawn: Rect,
+    pub content: Rect,
+    pass: u64,
+}
+
+fn drawn_widgets_id() -> egui::Id {
+    egui::Id::unique("lectern-drawn-widgets")
+}
+
+/// Notes where a widget was drawn this pass (see [`drawn_widgets`]).
+pub(crate) fn record_drawn_widget(
+    ctx: &egui::Context,
+    slide: usize,
+    path: &[usize],
+    kind: &'static str,
+    slot: Rect,
+    drawn: Rect,
+    content: Rect,
+) {
+    let pass = ctx.cumulative_pass_nr();
+    ctx.data_mut(|d| {
+        let v = d.get_temp_mut_or_default::<Vec<DrawnWidget>>(drawn_widgets_id());
+        v.retain(|w| w.pass + 1 >= pass);
+        v.push(DrawnWidget {
+            slide,
+            path: path.to_vec(),
+            kind,
+            slot,
+            drawn,
+            content,
+            pass,
+        });
+    });
+}
+
+/// The widgets drawn in the latest pass of `ctx`, where they were drawn.
+pub fn drawn_widgets(ctx: &egui::Context) -> Vec<DrawnWidget> {
+    let v: Vec<DrawnWidget> = ctx.data(|d| d.get_temp(drawn_widgets_id()).unwrap_or_default());
+    let last = v.iter().map(|w| w.pass).max().unwrap_or(0);
+    v.into_iter().filter(|w| w.pass == last).collect()
 }

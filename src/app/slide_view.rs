@@ -30,6 +30,9 @@ pub struct SlideOptions<'a> {
     /// A tool is drawing: the canvas takes every click and drag (see [`SlideResponse::ink`]),
     /// so neither the slide's widgets nor "click to advance" see them.
     pub drawing: bool,
+    /// Draw widgets' controls even when the deck says `controls: Presenter` (the `C` key on a
+    /// single screen).
+    pub force_controls: bool,
 }
 
 impl Default for SlideOptions<'_> {
@@ -40,6 +43,7 @@ impl Default for SlideOptions<'_> {
             background: true,
             ink: InkView::default(),
             drawing: false,
+            force_controls: false,
         }
     }
 }
@@ -112,7 +116,14 @@ pub fn slide_ui_with(
             .max_rect(inner)
             .layout(egui::Layout::top_down(Align::Min)),
     );
-    content.set_style(widget_style(ui.style(), &look, deck.theme));
+    let mut style = widget_style(ui.style(), &look, deck.theme);
+    if deck.controls == crate::deck::Controls::Presenter && !options.force_controls {
+        style.text_styles.insert(
+            egui::TextStyle::Name(crate::widgets::style::NO_CONTROLS_STYLE.into()),
+            egui::FontId::proportional(1.0),
+        );
+    }
+    content.set_style(style);
     content.set_clip_rect(canvas.intersect(ui.clip_rect()));
     state.begin_frame(deck.file.as_deref());
     let bctx = BlockCtx {
@@ -121,6 +132,7 @@ pub fn slide_ui_with(
         base_dir: deck.base_dir.as_deref(),
         deck_file: deck.file.as_deref(),
         slide_index: index,
+        content: inner,
     };
     match slide.layout {
         Layout::Content => content_slide_ui(&mut content, slide, &bctx, state),

@@ -71,8 +71,10 @@ pub mod size {
     pub const BULLET_GAP: f32 = 18.0;
     pub const MATH: f32 = 40.0;
     pub const FOOTER: f32 = 24.0;
-    /// Text inside widgets (slider labels, plot ticks): smaller than body, still readable.
-    pub const WIDGET_TEXT: f32 = 28.0;
+    /// Text inside widgets (labels, readouts, tick labels, legends, in-plot labels): two thirds
+    /// of the body size (30 px on a 1080p slide), so it scales with the slide's type scale and
+    /// stays readable from the back row (at least 28 px at 1080p, tested).
+    pub const WIDGET_TEXT: f32 = BODY * 0.65;
 }
 
 /// A [`Palette`] and the factor from canvas units to screen points for one drawn slide.

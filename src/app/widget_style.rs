@@ -29,24 +29,21 @@ pub(crate) fn widget_style(base: &egui::Style, look: &Look, theme: Theme) -> egu
     }
 
     let text = |units: f32, family: FontFamily| FontId::new(look.scaled(units), family);
-    let prop = FontFamily::Proportional;
+    // The slide's body face for every widget text, readouts included: one face with the body
+    // text and the typeset maths beside it (Libertinus), not a sans for controls and a mono
+    // for numbers. Nothing smaller than the widget size: the back row reads it all.
+    let serif = FontFamily::Name(theme::SERIF.into());
     style.text_styles = [
-        (
-            TextStyle::Small,
-            text(size::WIDGET_TEXT * 0.75, prop.clone()),
-        ),
-        (TextStyle::Body, text(size::WIDGET_TEXT, prop.clone())),
-        (TextStyle::Button, text(size::WIDGET_TEXT, prop.clone())),
-        (TextStyle::Heading, text(size::WIDGET_TEXT * 1.4, prop)),
-        (
-            TextStyle::Monospace,
-            text(size::WIDGET_TEXT * 0.9, FontFamily::Monospace),
-        ),
+        (TextStyle::Small, text(size::WIDGET_TEXT, serif.clone())),
+        (TextStyle::Body, text(size::WIDGET_TEXT, serif.clone())),
+        (TextStyle::Button, text(size::WIDGET_TEXT, serif.clone())),
+        (TextStyle::Heading, text(size::WIDGET_TEXT * 1.4, serif.clone())),
+        (TextStyle::Monospace, text(size::WIDGET_TEXT, serif.clone())),
     ]
     .into();
     style.text_styles.insert(
         TextStyle::Name(theme::CANVAS_STYLE.into()),
-        text(size::WIDGET_TEXT, FontFamily::Proportional),
+        text(size::WIDGET_TEXT, serif),
     );
 
     // egui's default spacing is made for 12.5-point body text; scale it with ours.

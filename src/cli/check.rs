@@ -60,6 +60,8 @@ pub struct Report {
     pub problems: Vec<Diagnostic>,
     /// `slides/lecture.ron: 26 slides, 15:00 planned`
     pub deck_lines: Vec<String>,
+    /// Worth knowing, not a problem: which shaders a deck's scene uses.
+    pub notes: Vec<String>,
     pub counts: [usize; 5],
 }
 
@@ -188,6 +190,7 @@ pub fn check_text(
                     minutes(deck.planned_secs())
                 ));
             }
+            report.notes.extend(checked.notes);
             checked.problems
         }
         Kind::Scene => first(crate::scene::parse_scene(text, file).map(|_| ())),
@@ -210,6 +213,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let report = check_paths(&paths, defaults);
     for line in &report.deck_lines {
         println!("{line}");
+    }
+    for note in &report.notes {
+        println!("{note}");
     }
     for d in &report.problems {
         println!("{d}");

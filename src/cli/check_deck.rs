@@ -37,6 +37,8 @@ pub struct DeckChecker {
 pub struct DeckCheck {
     pub deck: Option<Deck>,
     pub problems: Vec<Diagnostic>,
+    /// What the lecturer should know that is no problem (e.g. which shaders a scene uses).
+    pub notes: Vec<String>,
 }
 
 impl DeckChecker {
@@ -51,6 +53,7 @@ impl DeckChecker {
             Err(e) => DeckCheck {
                 deck: None,
                 problems: vec![Diagnostic::whole_file(file, format!("cannot read: {e}"))],
+                notes: Vec::new(),
             },
         }
     }
@@ -63,6 +66,7 @@ impl DeckChecker {
                 return DeckCheck {
                     deck: None,
                     problems: vec![d],
+                    notes: Vec::new(),
                 };
             }
         };
@@ -72,9 +76,12 @@ impl DeckChecker {
             file,
             tree: tree.as_ref(),
             problems: crate::deck::files::check_deck_files(file, text, &deck),
+            notes: Vec::new(),
         };
         // equations and tableau files the widgets name, compiled while the deck loaded
         (walk.problems).extend(deck.widget_problems.iter().map(|p| p.diagnostic.clone()));
+        // slides that do not parse: error slides in the talk, problems here
+        (walk.problems).extend(deck.broken_slides.iter().map(|b| b.diagnostic.clone()));
         self.formulas(&mut walk, &deck);
         for (i, slide) in deck.slides.iter().enumerate() {
             walk.blocks(&slide.body, &format!("slides[{i}].body"));
@@ -97,8 +104,10 @@ impl DeckChecker {
             }
         }
         walk.problems.sort_by_key(|d| (d.line, d.col));
+        walk.notes.dedup();
         DeckCheck {
             problems: walk.problems,
+            notes: walk.notes,
             deck: Some(deck),
         }
     }
@@ -135,6 +144,7 @@ struct Walk<'a> {
     file: &'a Path,
     tree: Option<&'a Node>,
     problems: Vec<Diagnostic>,
+    notes: Vec<String>,
 }
 
 impl Walk<'_> {
@@ -182,6 +192,7 @@ impl Walk<'_> {
             WidgetSpec::SimulationLoop(s) => self.simulation_body(&s.scene, s.body, at),
             // the scene file itself is checked with the deck's files
             WidgetSpec::Scene(s) => {
+                self.scene_shaders(&s.scene, at);
                 for (field, message) in s.range_problems() {
                     let value_at = format!("{at}.{field}");
                     let value_at = if self.node(&value_at).is_some() {
@@ -247,6 +258,57 @@ impl Walk<'_> {
             if !(self.problems.iter()).any(|p| (p.line, p.col) == (d.line, d.col)) {
                 self.push(d);
             }
+        }
+    }
+
+    /// The shaders a Scene widget's renderer is built from, checked the way the renderer
+    /// builds them (every technique's file present, naga, then its pipelines on a headless
+    /// adapter): the project's `shaders/`, or the bundled ones when it has none (said in a
+    /// note). A missing or broken shader is a problem at the widget's scene path, so a deck
+    /// that checks is a deck whose scene starts.
+    fn scene_shaders(&mut self, written: &str, at: &str) {
+        let Ok(scene_path) = crate::paths::resolve_for(self.file, written) else {
+            return;
+        };
+        let scene_at = format!("{at}.scene");
+        let scene_at = if self.node(&scene_at).is_some() {
+            scene_at
+        } else {
+            at.to_owned()
+        };
+        let folder = match crate::bundled::shader_folder_for_scene(&scene_path) {
+            Ok(f) => f,
+            Err(e) => return self.at(&scene_at, format!("scene: {e}")),
+        };
+        if folder.bundled {
+            self.notes.push(format!(
+                "{}: the scene uses the shaders built into lectern ({} has no shaders/ folder; `lectern new --with-shaders` writes a copy to edit)",
+                self.file.display(),
+                crate::paths::project_root(self.file).display()
+            ));
+        }
+        let mut broken = Vec::new();
+        for name in crate::render::pipeline::TECHNIQUE_SHADERS {
+            let path = folder.dir.join(name);
+            if !path.is_file() {
+                broken.push(format!("{name} is missing"));
+                continue;
+            }
+            let problems = crate::render::check_shader_file(&path);
+            if !problems.is_empty() {
+                broken.push(format!("{name} has {} problem(s), listed at the shader", problems.len()));
+                self.problems.extend(problems);
+            }
+        }
+        if !broken.is_empty() {
+            self.at(
+                &scene_at,
+                format!(
+                    "scene: the renderer cannot start with the shaders in {}: {}",
+                    folder.dir.display(),
+                    broken.join(", ")
+                ),
+            );
         }
     }
 

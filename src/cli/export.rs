@@ -110,7 +110,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     let mut handout = args.pdf.clone().map(|p| HandoutWriter::new(p, args.notes));
     let digits = deck.slides.len().to_string().len().max(2);
-    let mut failures = Vec::new();
+    let mut failures: Vec<String> = (deck.broken_slides.iter())
+        .map(|b| format!("{} (exported as an error slide)", b.diagnostic))
+        .collect();
     for (index, slide) in deck.slides.iter().enumerate() {
         let mut state = SlideState::default();
         for problem in tweaks.apply(&deck, index, &mut state) {

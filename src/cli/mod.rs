@@ -7,6 +7,7 @@ pub mod export;
 pub mod export_data;
 pub mod export_pdf;
 pub mod inertia;
+pub mod new;
 pub mod present;
 pub mod render_scene;
 pub mod solve;

@@ -18,8 +18,8 @@ pub struct Args {
     /// The problem (RON: name, vars, rhs, params, initial, t0, exact).
     pub problem: PathBuf,
     /// euler, midpoint, heun, rk4, symplectic-euler, verlet, implicit-euler,
-    /// implicit-midpoint, or an adaptive pair: dopri5, tsit5, vern6, vern7, vern8, vern9,
-    /// dop853.
+    /// implicit-midpoint, an adaptive pair: dopri5, tsit5, vern6, vern7, vern8, vern9,
+    /// dop853, or an adaptive stiff solver: rodas5p, radau5.
     #[arg(long, default_value = "rk4")]
     pub method: Method,
     /// A custom explicit Runge–Kutta method as a Butcher tableau (RON); overrides --method.
@@ -43,6 +43,10 @@ pub struct Args {
     /// A state component beyond this magnitude counts as divergence.
     #[arg(long, default_value_t = 1e12)]
     pub bound: f64,
+    /// Go on when dopri5 or dop853 finds the problem stiff (by default the run stops there
+    /// and suggests a stiff solver).
+    #[arg(long)]
+    pub ignore_stiffness: bool,
     /// Override a parameter of the problem, e.g. `--param w=2` (repeatable).
     #[arg(long = "param", value_name = "NAME=VALUE")]
     pub params: Vec<String>,
@@ -78,6 +82,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             h0: args.h,
             bound: args.bound,
             record: args.trajectory,
+            stop_if_stiff: !args.ignore_stiffness,
             ..Adaptive::default()
         };
         (
@@ -116,9 +121,21 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     if sol.rejected > 0 || (args.method.is_adaptive() && args.tableau.is_none()) {
         write!(err, " (rejected: {})", sol.rejected)?;
     }
+    if args.method.is_stiff_solver() && args.tableau.is_none() {
+        write!(
+            err,
+            ", Jacobian evaluations: {}, LU decompositions: {}",
+            sol.work.jac_evals, sol.work.lu_decomps
+        )?;
+    }
     writeln!(err)?;
     match &sol.outcome {
         Outcome::Finished => Ok(()),
+        Outcome::Stiff { .. } => bail!(
+            "{}: {} (or --ignore-stiffness to go on)",
+            problem.name,
+            sol.outcome
+        ),
         other => bail!("{}: {other}", problem.name),
     }
 }

@@ -4,18 +4,43 @@ use std::collections::HashMap;
 use std::path::Path;
 
 use super::widgets::{OdeSource, WidgetSpec};
+use super::broken::{blank_broken_slides, error_slide, ron_options};
 use super::{Deck, WidgetProblem, block_tree_path};
 use crate::diag::Diagnostic;
 use crate::ron_tree;
 
 /// Parses deck text; `file` only names the source in errors.
+/// A slide that does not parse on its own (a misspelt widget name, a missing field) does not
+/// fail the deck: it becomes an error slide and is listed in `Deck::broken_slides`
+/// ([`super::broken`]).
 pub fn parse_deck(text: &str, file: &Path) -> Result<Deck, Diagnostic> {
-    let mut deck: Deck = ron::Options::default()
-        .with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME)
-        .from_str(text)
-        .map_err(|e| at_token(text, Diagnostic::from_ron(file, &e)))?;
-    validate(&deck, text, file)?;
-    deck.widget_problems = widget_problems(&deck, text, file);
+    let written = text;
+    let (mut deck, text, broken) = match ron_options().from_str::<Deck>(written) {
+        Ok(deck) => (deck, std::borrow::Cow::Borrowed(written), Vec::new()),
+        Err(e) => {
+            let whole = at_token(written, Diagnostic::from_ron(file, &e));
+            let Some((blanked, broken)) = blank_broken_slides(written, file) else {
+                return Err(whole);
+            };
+            match ron_options().from_str::<Deck>(&blanked) {
+                Ok(deck) => (deck, std::borrow::Cow::Owned(blanked), broken),
+                // a deck-level fault remains: that is the one to report
+                Err(e) => return Err(at_token(&blanked, Diagnostic::from_ron(file, &e))),
+            }
+        }
+    };
+    if !broken.is_empty() {
+        let tree = ron_tree::parse(written).ok();
+        for b in &broken {
+            let node = (tree.as_ref()).and_then(|t| t.at(&format!("slides[{}]", b.slide)));
+            if let Some(slot) = deck.slides.get_mut(b.slide) {
+                *slot = error_slide(node, b);
+            }
+        }
+    }
+    validate(&deck, &text, file)?;
+    deck.widget_problems = widget_problems(&deck, &text, file);
+    deck.broken_slides = broken;
     Ok(deck)
 }
 
@@ -134,7 +159,7 @@ pub fn widget_problems(deck: &Deck, text: &str, file: &Path) -> Vec<WidgetProble
 
 /// RON reports some errors at the whitespace before the offending token (`title: 42` points
 /// after the colon); move such a position onto the token, which is what an editor should show.
-fn at_token(text: &str, mut d: Diagnostic) -> Diagnostic {
+pub(super) fn at_token(text: &str, mut d: Diagnostic) -> Diagnostic {
     if d.line == 0 {
         return d;
     }
@@ -160,9 +185,45 @@ mod tests {
 
     #[test]
     fn malformed_deck_points_at_the_fault() {
-        let text = "(\n  title: \"x\",\n  slides: [\n    ( title: 3 ),\n  ],\n)";
+        // a deck-level fault fails the deck
+        let text = "(\n  title: 3,\n  slides: [\n    ( title: \"s\" ),\n  ],\n)";
         let err = parse_deck(text, Path::new("d.ron")).unwrap_err();
-        assert_eq!(err.line, 4, "{err}");
+        assert_eq!((err.line, err.col), (2, 10), "{err}");
+        // a fault inside one slide fails only that slide
+        let text = "(\n  title: \"x\",\n  slides: [\n    ( title: 3 ),\n  ],\n)";
+        let deck = parse_deck(text, Path::new("d.ron")).unwrap();
+        let broken = &deck.broken_slides[0].diagnostic;
+        assert_eq!((broken.line, broken.col), (4, 14), "{broken}");
+    }
+
+    #[test]
+    fn a_misspelt_widget_fails_only_its_slide_at_its_name_with_a_did_you_mean() {
+        let text = concat!(
+            "(title: \"t\", slides: [\n",
+            "  (id: \"a\", title: \"One\", body: [Text(\"ok\")]),\n",
+            "  (id: \"b\", title: \"Two ∑\", body: [Text(\"é\"),\n",
+            "     Widget(SlopeFeld((ode: File(\"p.ron\"), t_end: 1.0)))]),\n",
+            "  (id: \"c\", title: \"Three\", body: [Math(src: \"x\", latx: true)]),\n",
+            "  (id: \"d\", title: \"Four\", seconds: 5),\n",
+            "])",
+        );
+        let deck = parse_deck(text, Path::new("d.ron")).unwrap();
+        assert_eq!(deck.slides.len(), 4);
+        let titles: Vec<&str> = deck.slides.iter().map(|s| s.title.as_str()).collect();
+        assert_eq!(titles, ["One", "⚠ Two ∑", "⚠ Three", "Four"]);
+        // the error slides keep their ids (the presenter's place survives the fix)
+        assert_eq!(deck.slides[1].id.as_deref(), Some("b"));
+        assert_eq!(deck.slides[3].seconds, Some(5.0));
+        let b: Vec<_> = deck.broken_slides.iter().map(|b| &b.diagnostic).collect();
+        assert_eq!(b.len(), 2);
+        assert_eq!((b[0].line, b[0].col), (4, 13), "{}", b[0]);
+        assert!(b[0].message.contains("did you mean `SlopeField`?"), "{}", b[0]);
+        assert!(b[0].message.starts_with("slide 2 does not load"), "{}", b[0]);
+        assert_eq!(b[1].line, 5, "{}", b[1]);
+        assert!(b[1].message.contains("did you mean `latex`?"), "{}", b[1]);
+        // the error slide says it, with the place
+        let shown = format!("{:?}", deck.slides[1].body);
+        assert!(shown.contains("d.ron:4:13"), "{shown}");
     }
 
     #[test]

@@ -8,6 +8,7 @@ use serde::{Deserialize, Serialize};
 use super::widgets::WidgetSpec;
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Deck {
     pub title: String,
     /// Width : height of the logical canvas; slides are laid out on it and scaled to the window.
@@ -16,6 +17,10 @@ pub struct Deck {
     /// Colour scheme of the slides.
     #[serde(default)]
     pub theme: Theme,
+    /// Where widgets' sliders, checkboxes and buttons are: on the slide (`Slide`, the default)
+    /// or only on the presenter's side (`Presenter`: the projector shows plots and values).
+    #[serde(default)]
+    pub controls: Controls,
     pub slides: Vec<Slide>,
     /// Prepared tweak states, recalled with the keys 1…9 during the talk.
     #[serde(default)]
@@ -32,6 +37,10 @@ pub struct Deck {
     /// the talk: that widget shows its error (or its last good equation), the rest works.
     #[serde(skip)]
     pub widget_problems: Vec<WidgetProblem>,
+    /// Slides that did not parse, shown as error slides in their place (the rest of the deck
+    /// loads). `lectern check` fails on them; `lectern export` too, unless `--keep-going`.
+    #[serde(skip)]
+    pub broken_slides: Vec<super::broken::BrokenSlide>,
 }
 
 /// A problem of one widget: slide index, block path (indices into the body, then into
@@ -62,6 +71,16 @@ impl Aspect {
     }
 }
 
+/// `controls:` of a deck.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Controls {
+    /// Widgets draw their controls on the slide, for the audience to see them move.
+    #[default]
+    Slide,
+    /// Only the presenter view has the controls; the slide shows each control's value.
+    Presenter,
+}
+
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub enum Theme {
     /// Light text on a near-black background: best in a dimmed lecture hall.
@@ -72,6 +91,7 @@ pub enum Theme {
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Slide {
     /// Stable identity across edits: keeps the presenter's place and tweaks when slides move.
     #[serde(default)]
@@ -163,6 +183,7 @@ pub const IMAGE_WIDTH_RANGE: std::ops::RangeInclusive<f32> = 0.05..=1.0;
 
 /// One piece of slide content, laid out top to bottom.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum Block {
     /// A paragraph.
     Text(String),
@@ -189,6 +210,7 @@ pub enum Block {
 /// A bookmark written in the deck: key `1`…`9` jumps to `slide` and sets its widgets'
 /// parameters, e.g. `(key: 1, slide: "neptune", label: "h = 0.5 blows up", set: [("h", 0.5)])`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct BookmarkDecl {
     pub key: u8,
     pub slide: String,

@@ -1,9 +1,10 @@
 //! Implicit Euler and implicit midpoint for stiff problems. Both solve
 //! y = x + θh f(t + θh, y) by Newton's method (θ = 1: implicit Euler, x' = y;
 //! θ = ½: implicit midpoint, x' = 2y − x). The Jacobian is the system's analytic one when it
-//! has one, else forward differences; dense LU with partial pivoting (small n).
+//! has one, else forward differences; dense LU with partial pivoting (`ode::linalg`).
 
 use super::System;
+use super::linalg::Lu;
 
 /// Why an implicit step could not be taken.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -28,8 +29,7 @@ pub struct Implicit {
     f: Vec<f64>,
     fp: Vec<f64>,
     res: Vec<f64>,
-    jac: Vec<f64>,
-    piv: Vec<usize>,
+    lu: Lu,
     pub max_iter: usize,
 }
 
@@ -43,8 +43,7 @@ impl Implicit {
             f: vec![0.0; n],
             fp: vec![0.0; n],
             res: vec![0.0; n],
-            jac: vec![0.0; n * n],
-            piv: vec![0; n],
+            lu: Lu::new(n),
             max_iter: 30,
         }
     }
@@ -99,16 +98,17 @@ impl Implicit {
             for i in 0..n {
                 self.res[i] = self.y[i] - x[i] - th * self.f[i];
             }
-            if !sys.jacobian(ts, &self.y, &mut self.jac) {
-                self.fd_jacobian(sys, ts);
+            if !sys.jacobian(ts, &self.y, &mut self.lu.m) {
+                forward_difference_jacobian(sys, ts, &mut self.y, &self.f, &mut self.fp, &mut self.lu.m);
             }
-            for v in self.jac.iter_mut() {
+            for v in self.lu.m.iter_mut() {
                 *v *= -th;
             }
             for i in 0..n {
-                self.jac[i * n + i] += 1.0;
+                self.lu.m[i * n + i] += 1.0;
             }
-            lu_solve(&mut self.jac, &mut self.piv, &mut self.res, n)?;
+            self.lu.factor().map_err(|_| NewtonError::Singular)?;
+            self.lu.solve(&mut self.res);
             let mut size = 0.0f64;
             for i in 0..n {
                 self.y[i] -= self.res[i];
@@ -134,76 +134,38 @@ impl Implicit {
         }
         Ok(())
     }
-
-    /// Forward differences, column by column, around `self.y` where f is in `self.f`.
-    fn fd_jacobian<S: System + ?Sized>(&mut self, sys: &S, t: f64) {
-        let n = self.n;
-        for j in 0..n {
-            let yj = self.y[j];
-            let dy = f64::EPSILON.sqrt() * yj.abs().max(1.0);
-            self.y[j] = yj + dy;
-            sys.rhs(t, &self.y, &mut self.fp);
-            self.y[j] = yj;
-            for i in 0..n {
-                self.jac[i * n + j] = (self.fp[i] - self.f[i]) / dy;
-            }
-        }
-    }
 }
 
-/// Solves M d = r in place (r becomes d); M is overwritten by its LU factors.
-fn lu_solve(m: &mut [f64], piv: &mut [usize], r: &mut [f64], n: usize) -> Result<(), NewtonError> {
-    for k in 0..n {
-        let mut p = k;
-        for i in k + 1..n {
-            if m[i * n + k].abs() > m[p * n + k].abs() {
-                p = i;
-            }
-        }
-        piv[k] = p;
-        if m[p * n + k] == 0.0 || !m[p * n + k].is_finite() {
-            return Err(NewtonError::Singular);
-        }
-        if p != k {
-            for j in 0..n {
-                m.swap(k * n + j, p * n + j);
-            }
-            r.swap(k, p);
-        }
-        let d = m[k * n + k];
-        for i in k + 1..n {
-            let f = m[i * n + k] / d;
-            if f != 0.0 {
-                for j in k + 1..n {
-                    m[i * n + j] -= f * m[k * n + j];
-                }
-                r[i] -= f * r[k];
-            }
+/// Forward differences ∂f/∂x column by column around `y`, where `f` = f(t, y); n extra
+/// f-evaluations (counted by a [`Counted`](super::Counted) system). `y` is restored.
+pub(crate) fn forward_difference_jacobian<S: System + ?Sized>(
+    sys: &S,
+    t: f64,
+    y: &mut [f64],
+    f: &[f64],
+    fp: &mut [f64],
+    jac: &mut [f64],
+) {
+    let n = y.len();
+    for j in 0..n {
+        let yj = y[j];
+        // Hairer's increment (radau5.f): √(ε · max(1e-5, |y_j|))
+        let dy = (f64::EPSILON * yj.abs().max(1e-5)).sqrt();
+        y[j] = yj + dy;
+        // the step actually taken, after rounding
+        let dy = y[j] - yj;
+        sys.rhs(t, y, fp);
+        y[j] = yj;
+        for i in 0..n {
+            jac[i * n + j] = (fp[i] - f[i]) / dy;
         }
     }
-    for i in (0..n).rev() {
-        let mut acc = r[i];
-        for j in i + 1..n {
-            acc -= m[i * n + j] * r[j];
-        }
-        r[i] = acc / m[i * n + i];
-    }
-    Ok(())
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::ode::FnSystem;
-
-    #[test]
-    fn lu_solves_a_pivoting_system() {
-        let mut m = vec![0.0, 2.0, 1.0, 1.0];
-        let mut piv = vec![0; 2];
-        let mut r = vec![4.0, 3.0];
-        lu_solve(&mut m, &mut piv, &mut r, 2).unwrap();
-        assert!((r[0] - 1.0).abs() < 1e-15 && (r[1] - 2.0).abs() < 1e-15);
-    }
 
     #[test]
     fn implicit_euler_on_decay_is_one_over_one_minus_z() {

@@ -30,10 +30,12 @@ pub enum Method {
     Vern8,
     Vern9,
     Dop853,
+    Rodas5p,
+    Radau5,
 }
 
 impl Method {
-    pub const ALL: [Method; 15] = [
+    pub const ALL: [Method; 17] = [
         Method::Euler,
         Method::Midpoint,
         Method::Heun,
@@ -49,7 +51,12 @@ impl Method {
         Method::Vern8,
         Method::Vern9,
         Method::Dop853,
+        Method::Rodas5p,
+        Method::Radau5,
     ];
+
+    /// The adaptive solvers for stiff problems (`ode::stiff`).
+    pub const STIFF: [Method; 2] = [Method::Rodas5p, Method::Radau5];
 
     /// The adaptive embedded pairs, by order.
     pub const PAIRS: [Method; 7] = [
@@ -63,7 +70,8 @@ impl Method {
     ];
 
     /// The CLI name: `euler`, `midpoint`, `heun`, `rk4`, `symplectic-euler`, `verlet`,
-    /// `implicit-euler`, `implicit-midpoint`, `dopri5`, `tsit5`, `vern6` … `vern9`, `dop853`.
+    /// `implicit-euler`, `implicit-midpoint`, `dopri5`, `tsit5`, `vern6` … `vern9`, `dop853`,
+    /// `rodas5p`, `radau5`.
     pub fn name(self) -> &'static str {
         match self {
             Method::Euler => "euler",
@@ -81,6 +89,8 @@ impl Method {
             Method::Vern8 => "vern8",
             Method::Vern9 => "vern9",
             Method::Dop853 => "dop853",
+            Method::Rodas5p => "rodas5p",
+            Method::Radau5 => "radau5",
         }
     }
 
@@ -102,6 +112,8 @@ impl Method {
             Method::Vern8 => "Verner 8(7)",
             Method::Vern9 => "Verner 9(8)",
             Method::Dop853 => "Dormand–Prince 8(5,3)",
+            Method::Rodas5p => "Rodas5P",
+            Method::Radau5 => "Radau IIA 5",
         }
     }
 
@@ -115,7 +127,7 @@ impl Method {
             Method::Euler | Method::SymplecticEuler | Method::ImplicitEuler => 1,
             Method::Midpoint | Method::Heun | Method::Verlet | Method::ImplicitMidpoint => 2,
             Method::Rk4 => 4,
-            Method::Dopri5 | Method::Tsit5 => 5,
+            Method::Dopri5 | Method::Tsit5 | Method::Rodas5p | Method::Radau5 => 5,
             Method::Vern6 => 6,
             Method::Vern7 => 7,
             Method::Vern8 | Method::Dop853 => 8,
@@ -128,13 +140,20 @@ impl Method {
         matches!(self, Method::SymplecticEuler | Method::Verlet)
     }
 
+    /// Implicit (or linearly implicit) methods: they solve with the Jacobian and stay stable
+    /// on stiff problems.
     pub fn is_implicit(self) -> bool {
-        matches!(self, Method::ImplicitEuler | Method::ImplicitMidpoint)
+        matches!(self, Method::ImplicitEuler | Method::ImplicitMidpoint) || self.is_stiff_solver()
+    }
+
+    /// The adaptive stiff solvers, `rodas5p` and `radau5`.
+    pub fn is_stiff_solver(self) -> bool {
+        Method::STIFF.contains(&self)
     }
 
     /// Whether the method chooses its own step (rtol/atol) rather than taking a fixed h.
     pub fn is_adaptive(self) -> bool {
-        Method::PAIRS.contains(&self)
+        Method::PAIRS.contains(&self) || self.is_stiff_solver()
     }
 
     /// The Butcher tableau of an explicit Runge–Kutta method (for an embedded pair, its
@@ -158,6 +177,8 @@ impl Method {
                 (1.0 + 0.5 * z.0, 0.5 * z.1),
                 (1.0 - 0.5 * z.0, -0.5 * z.1),
             )),
+            Method::Rodas5p => Some(super::stiff::rodas5p::stability(z)),
+            Method::Radau5 => Some(super::stiff::radau5::stability(z)),
             m => m.tableau().map(|t| t.stability(z)),
         }
     }

@@ -314,6 +314,7 @@ impl ProblemDef {
             initial: self.initial.clone(),
             t0: self.t0,
             exact_src: self.exact.clone(),
+            jac: Derivatives::of(&rhs, n),
             rhs,
             exact,
         })
@@ -343,7 +344,28 @@ pub struct Problem {
     pub t0: f64,
     pub exact_src: Option<Vec<String>>,
     rhs: Program,
+    jac: Derivatives,
     exact: Option<Program>,
+}
+
+/// The right-hand side's exact derivatives, differentiated from its compiled program.
+#[derive(Debug, Clone)]
+struct Derivatives {
+    /// ∂f_i/∂x_j, row-major
+    dfdx: Program,
+    /// ∂f/∂t; `None` when it is identically zero (an autonomous system)
+    dfdt: Option<Program>,
+}
+
+impl Derivatives {
+    fn of(rhs: &Program, n: usize) -> Self {
+        let vars: Vec<usize> = (1..=n).collect();
+        let dfdt = expr::derivatives(rhs, &[0]);
+        Self {
+            dfdx: expr::derivatives(rhs, &vars),
+            dfdt: (!dfdt.is_zero()).then_some(dfdt),
+        }
+    }
 }
 
 /// A problem file's definition, or the file's own diagnostic (unreadable, not RON).
@@ -458,6 +480,7 @@ impl Problem {
         // the sources compiled once already, so they compile again
         self.rhs = expr::compile(&self.rhs_src, &self.vars, &self.params)
             .map_err(|(_, e)| e.to_string())?;
+        self.jac = Derivatives::of(&self.rhs, self.vars.len());
         if let Some(src) = &self.exact_src {
             let mut inputs = self.vars.clone();
             inputs.push("t0".into());
@@ -480,6 +503,18 @@ impl System for Problem {
     #[inline]
     fn rhs(&self, t: f64, x: &[f64], dxdt: &mut [f64]) {
         self.rhs.eval(t, x, dxdt)
+    }
+    /// Exact, from the symbolic derivative of the compiled right-hand side.
+    fn jacobian(&self, t: f64, x: &[f64], jac: &mut [f64]) -> bool {
+        self.jac.dfdx.eval(t, x, jac);
+        true
+    }
+    fn time_derivative(&self, t: f64, x: &[f64], dfdt: &mut [f64]) -> bool {
+        match &self.jac.dfdt {
+            Some(p) => p.eval(t, x, dfdt),
+            None => dfdt.fill(0.0),
+        }
+        true
     }
 }
 

@@ -6,6 +6,9 @@ use std::fmt;
 
 use super::explicit::Rk4;
 use super::implicit::Implicit;
+use super::stiff::ImplicitWork;
+use super::stiff::radau5::FixedRadau5;
+use super::stiff::rodas5p::FixedRodas5p;
 use super::symplectic::{SymplecticEuler, Verlet};
 use super::system::Counted;
 use super::{ExplicitRk, Method, System, Tableau};
@@ -28,6 +31,10 @@ pub enum Outcome {
         t: f64,
         reason: String,
     },
+    /// an explicit pair's stiffness test fired at time t (only with `Adaptive::stop_if_stiff`)
+    Stiff {
+        t: f64,
+    },
 }
 
 impl fmt::Display for Outcome {
@@ -36,6 +43,9 @@ impl fmt::Display for Outcome {
             Outcome::Finished => f.write_str("finished"),
             Outcome::Diverged { t } => write!(f, "diverged at t = {t}"),
             Outcome::Failed { t, reason } => write!(f, "failed at t = {t}: {reason}"),
+            Outcome::Stiff { t } => {
+                write!(f, "looks stiff at t = {t}; try --method rodas5p or radau5")
+            }
         }
     }
 }
@@ -52,6 +62,8 @@ pub struct Solution {
     pub steps: usize,
     /// rejected steps (adaptive runs only)
     pub rejected: usize,
+    /// Jacobian evaluations and LU decompositions (implicit methods)
+    pub work: ImplicitWork,
     pub outcome: Outcome,
 }
 
@@ -64,6 +76,7 @@ impl Solution {
             f_evals: 0,
             steps: 0,
             rejected: 0,
+            work: ImplicitWork::default(),
             outcome: Outcome::Finished,
         }
     }
@@ -108,6 +121,8 @@ pub enum Stepper {
     SymplecticEuler(SymplecticEuler),
     Verlet(Verlet),
     Implicit(Implicit),
+    Rodas5p(Box<FixedRodas5p>),
+    Radau5(Box<FixedRadau5>),
 }
 
 impl Stepper {
@@ -119,6 +134,8 @@ impl Stepper {
             Method::Verlet => Stepper::Verlet(Verlet::new(n)),
             Method::ImplicitEuler => Stepper::Implicit(Implicit::new(1.0, n)),
             Method::ImplicitMidpoint => Stepper::Implicit(Implicit::new(0.5, n)),
+            Method::Rodas5p => Stepper::Rodas5p(Box::new(FixedRodas5p::new(n))),
+            Method::Radau5 => Stepper::Radau5(Box::new(FixedRadau5::new(n))),
             m => Stepper::Explicit(ExplicitRk::new(m.tableau().expect("explicit RK"), n)),
         }
     }
@@ -141,6 +158,8 @@ impl Stepper {
             Stepper::SymplecticEuler(s) => s.step(sys, t, x, h),
             Stepper::Verlet(s) => s.step(sys, t, x, h),
             Stepper::Implicit(s) => return s.step(sys, t, x, h).map_err(|e| e.message()),
+            Stepper::Rodas5p(s) => return s.step(sys, t, x, h),
+            Stepper::Radau5(s) => return s.step(sys, t, x, h),
         }
         Ok(())
     }

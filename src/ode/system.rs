@@ -11,6 +11,11 @@ pub trait System {
     fn jacobian(&self, _t: f64, _x: &[f64], _jac: &mut [f64]) -> bool {
         false
     }
+    /// Writes ∂f/∂t into `dfdt` and returns true, or returns false when there is no analytic
+    /// one (Rosenbrock methods then take a forward difference in t, one counted f-evaluation).
+    fn time_derivative(&self, _t: f64, _x: &[f64], _dfdt: &mut [f64]) -> bool {
+        false
+    }
 }
 
 /// A system from a closure, for tests, widgets and native benchmarks.
@@ -44,12 +49,17 @@ impl<S: System + ?Sized> System for &S {
     fn jacobian(&self, t: f64, x: &[f64], jac: &mut [f64]) -> bool {
         (**self).jacobian(t, x, jac)
     }
+    fn time_derivative(&self, t: f64, x: &[f64], dfdt: &mut [f64]) -> bool {
+        (**self).time_derivative(t, x, dfdt)
+    }
 }
 
-/// Counts the f-evaluations of a wrapped system (a `Cell`, so stepping stays `&self`).
+/// Counts the f-evaluations and analytic Jacobian evaluations of a wrapped system (`Cell`s,
+/// so stepping stays `&self`).
 pub struct Counted<'a, S: ?Sized> {
     pub sys: &'a S,
     pub evals: std::cell::Cell<u64>,
+    pub jac_evals: std::cell::Cell<u64>,
 }
 
 impl<'a, S: System + ?Sized> Counted<'a, S> {
@@ -57,6 +67,7 @@ impl<'a, S: System + ?Sized> Counted<'a, S> {
         Self {
             sys,
             evals: std::cell::Cell::new(0),
+            jac_evals: std::cell::Cell::new(0),
         }
     }
 }
@@ -71,6 +82,13 @@ impl<S: System + ?Sized> System for Counted<'_, S> {
         self.sys.rhs(t, x, dxdt)
     }
     fn jacobian(&self, t: f64, x: &[f64], jac: &mut [f64]) -> bool {
-        self.sys.jacobian(t, x, jac)
+        let analytic = self.sys.jacobian(t, x, jac);
+        if analytic {
+            self.jac_evals.set(self.jac_evals.get() + 1);
+        }
+        analytic
+    }
+    fn time_derivative(&self, t: f64, x: &[f64], dfdt: &mut [f64]) -> bool {
+        self.sys.time_derivative(t, x, dfdt)
     }
 }

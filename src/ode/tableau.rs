@@ -10,6 +10,7 @@ use crate::diag::Diagnostic;
 /// `x(t+h) = x + h Σ b_i k_i`. `a` is stored as full rows; entries on or above the diagonal
 /// must be zero (explicit).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Tableau {
     pub name: String,
     pub a: Vec<Vec<f64>>,

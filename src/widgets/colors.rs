@@ -50,6 +50,8 @@ pub const MAGENTA: Hue = hue("magenta", 0xEE, 0x33, 0x77);
 pub const SLATE_BLUE: Hue = hue("slate blue", 0x44, 0x77, 0xAA);
 pub const INDIGO: Hue = hue("indigo", 0x6E, 0x62, 0xAA);
 pub const PURPLE: Hue = hue("purple", 0xAA, 0x44, 0x99);
+pub const OCHRE: Hue = hue("ochre", 0x9C, 0x6B, 0x30);
+pub const CYAN: Hue = hue("cyan", 0x1F, 0x9F, 0xC4);
 
 /// What a colour stands for on a slide.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -94,6 +96,8 @@ pub fn method_hue(m: Method) -> Hue {
         Method::Vern8 => FOREST_GREEN,
         Method::Vern9 => ROSE,
         Method::Dop853 => RASPBERRY,
+        Method::Rodas5p => OCHRE,
+        Method::Radau5 => CYAN,
     }
 }
 

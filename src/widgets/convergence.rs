@@ -6,10 +6,11 @@
 //! is run here with fixed steps of its propagating formula, so its line shows that formula's
 //! order (5 … 9); the legend says "fixed h".
 
-use egui_plot::{Line, Plot, PlotPoint, Points, Text};
+use egui_plot::{Line, Plot, PlotPoint, Points};
 
 use std::path::Path as FsPath;
 
+use super::labels;
 use super::live_ode::LiveOde;
 use super::methods::{MethodSet, steps_for};
 use super::style::{self, fmt_num};
@@ -234,13 +235,10 @@ pub fn pow10_label(v: f64) -> String {
     s
 }
 
-pub fn log_axes_plot<'a>(id: &str, x_label: &str, y_label: &str) -> Plot<'a> {
-    Plot::new(id.to_owned())
-        .allow_drag(false)
-        .allow_zoom(false)
-        .allow_scroll(false)
-        .x_axis_label(x_label.to_owned())
-        .y_axis_label(y_label.to_owned())
+/// A log–log plot (axes in decades); the y axis's name is drawn above it by the caller
+/// ([`style::y_name_ui`]).
+pub fn log_axes_plot<'a>(ui: &egui::Ui, id: &str, x_label: &str) -> Plot<'a> {
+    style::plot(ui, id.to_owned(), x_label)
         .x_grid_spacer(egui_plot::uniform_grid_spacer(|_| [1.0, 1.0, 1.0]))
         .y_grid_spacer(egui_plot::uniform_grid_spacer(|_| [1.0, 2.0, 4.0]))
         .x_axis_formatter(|m, _| pow10_label(m.value))
@@ -251,12 +249,8 @@ impl SlideWidget for Convergence {
     fn ui(&mut self, ui: &mut egui::Ui) {
         style::projector_text(ui);
         ui.horizontal_wrapped(|ui| {
-            ui.add(
-                egui::Slider::new(&mut self.spec.h_max, 0.05..=1.0)
-                    .logarithmic(true)
-                    .text("largest h"),
-            );
-            ui.add(egui::Slider::new(&mut self.spec.levels, 3..=12).text("halvings"));
+            style::slider(ui, &mut self.spec.h_max, 0.05..=1.0, "largest h", true);
+            style::slider(ui, &mut self.spec.levels, 3..=12, "halvings", false);
             self.methods.toggles_ui(ui);
         });
         style::problems_ui(ui, self.ode.load_error(), &self.methods.errors);
@@ -288,14 +282,17 @@ impl SlideWidget for Convergence {
             .iter()
             .flat_map(|d| d.3.iter().map(|p| p.0))
             .fold(f64::INFINITY, f64::min);
-        let visuals = ui.visuals().clone();
-        let plot = log_axes_plot("convergence", "step h", "global error");
+        let u = style::unit(ui);
+        style::y_name_ui(ui, "global error");
+        let plot = log_axes_plot(ui, "convergence", "step h");
         let plot = if h_min.is_finite() {
             plot.include_x(h_min.log10() - 0.6)
         } else {
             plot
         };
-        plot.show(ui, |p| {
+        let mut labels = Vec::new();
+        let mut ends = Vec::new();
+        let shown = plot.show(ui, |p| {
             for (_, name, color, pts, slope, order) in data {
                 let color = *color;
                 let v: Vec<[f64; 2]> = pts
@@ -306,35 +303,38 @@ impl SlideWidget for Convergence {
                 p.line(
                     Line::new(name.as_str(), v.clone())
                         .color(color)
-                        .width(style::PATH_WIDTH),
+                        .width(style::PATH_WIDTH * u),
                 );
                 p.points(
                     Points::new(name.as_str(), v.clone())
                         .color(color)
-                        .radius(5.0),
+                        .radius(style::MARKER_RADIUS * u),
                 );
+                // every computed point is an obstacle: a label never covers one
+                ends.extend(v.iter().map(|e| PlotPoint::new(e[0], e[1])));
                 // label at the smallest h of the fit (round-off points below the floor do not
                 // count), left of the line, in room the x range leaves for it
                 let fitted_end = v.iter().rev().find(|p| p[1] > ERR_FLOOR.log10());
                 if let (Some(s), Some(last)) = (slope, fitted_end) {
                     let text = match order {
-                        Some(o) => format!("slope {s:.2} (order {o})  "),
-                        None => format!("slope {s:.2}  "),
+                        Some(o) => format!("slope {s:.2} (order {o})"),
+                        None => format!("slope {s:.2}"),
                     };
-                    p.text(
-                        Text::new(
-                            format!("{name} slope"),
-                            PlotPoint::new(last[0], last[1]),
-                            egui::RichText::new(text)
-                                .size(22.0)
-                                .strong()
-                                .color(style::text_color_in(&visuals, color)),
-                        )
-                        .anchor(egui::Align2::RIGHT_CENTER),
-                    );
+                    labels.push(labels::PlotLabel {
+                        text,
+                        color,
+                        at: PlotPoint::new(last[0], last[1]),
+                        anchor: egui::Align2::RIGHT_CENTER,
+                    });
                 }
             }
         });
+        let t = &shown.transform;
+        let obstacles: Vec<egui::Rect> = ends
+            .iter()
+            .map(|&e| labels::marker_rect(t, e, style::MARKER_RADIUS * u))
+            .collect();
+        labels::draw(ui, t, &labels, &obstacles);
     }
 
     fn params(&mut self) -> Vec<Param<'_>> {

@@ -51,6 +51,9 @@ pub struct LiveOde {
     rhs: Vec<FieldState>,
     exact: Vec<FieldState>,
     revision: u64,
+    /// Set when a committed right-hand side left the file's exact solution behind (it solved
+    /// the old equation): what the readouts say instead of an error against the wrong curve.
+    dropped_exact: Option<String>,
 }
 
 impl LiveOde {
@@ -66,6 +69,7 @@ impl LiveOde {
             rhs: Vec::new(),
             exact: Vec::new(),
             revision: 0,
+            dropped_exact: None,
         };
         match source.load(deck_path) {
             Ok(loaded) => {
@@ -207,6 +211,140 @@ impl LiveOde {
         }
     }
 
+    /// Typing, as the presenter does: `text` becomes the draft of `slot`. Nothing the
+    /// audience sees changes until [`LiveOde::commit`] (Enter); [`LiveOde::revert`] (Esc)
+    /// drops the drafts. Every field's error is brought up to date; returns whether the
+    /// drafts compile together.
+    pub fn set_draft(&mut self, slot: ExprSlot, text: &str) -> bool {
+        self.sync_params();
+        let field = match slot {
+            ExprSlot::Rhs(k) => self.rhs.get_mut(k),
+            ExprSlot::Exact(k) => self.exact.get_mut(k),
+        };
+        let Some(field) = field else { return false };
+        field.text = text.to_owned();
+        let verdict = self.draft();
+        for f in self.rhs.iter_mut().chain(self.exact.iter_mut()) {
+            f.error = None;
+        }
+        match verdict {
+            Some(Err((at, message, col))) => {
+                let field = match at {
+                    ExprSlot::Rhs(k) => self.rhs.get_mut(k),
+                    ExprSlot::Exact(k) => self.exact.get_mut(k),
+                };
+                if let Some(f) = field {
+                    f.error = Some((message, col));
+                }
+                false
+            }
+            _ => true,
+        }
+    }
+
+    /// Whether a field holds text the audience does not see yet.
+    pub fn has_draft(&self) -> bool {
+        let Some(def) = &self.def else { return false };
+        let exact = def.exact.as_deref().unwrap_or(&[]);
+        (self.rhs.iter().map(|f| &f.text)).ne(def.rhs.iter())
+            || (self.exact.iter().map(|f| &f.text)).ne(exact.iter())
+    }
+
+    /// The equation the drafts make, compiled (`None` without drafts or a loaded equation;
+    /// the error with its field and 1-based column when they do not compile). A changed
+    /// right-hand side drops an exact solution that was not typed along with it: it solved
+    /// the old equation.
+    #[allow(clippy::type_complexity)]
+    fn draft(&self) -> Option<Result<(ProblemDef, Problem, bool), (ExprSlot, String, usize)>> {
+        let def = self.def.as_ref()?;
+        if !self.has_draft() {
+            return None;
+        }
+        let mut candidate = def.clone();
+        candidate.rhs = self.rhs.iter().map(|f| f.text.clone()).collect();
+        if candidate.exact.is_some() {
+            candidate.exact = Some(self.exact.iter().map(|f| f.text.clone()).collect());
+        }
+        let file = self.file_def.as_ref();
+        let rhs_is_the_files = file.is_some_and(|f| f.rhs == candidate.rhs);
+        let exact_is_the_files = file.is_some_and(|f| f.exact == candidate.exact);
+        let mut dropped = false;
+        if !rhs_is_the_files && exact_is_the_files && candidate.exact.is_some() {
+            candidate.exact = None;
+            dropped = true;
+        } else if rhs_is_the_files && candidate.exact.is_none() {
+            // back to the file's equation: its exact solution belongs again
+            candidate.exact = file.and_then(|f| f.exact.clone());
+        }
+        Some(match candidate.compile(self.named()) {
+            Ok(p) => Ok((candidate, p, dropped)),
+            Err(e) => {
+                let (at, col) = match e.pos {
+                    DefPos::InExpr("exact", k, c) => (ExprSlot::Exact(k), c + 1),
+                    DefPos::InExpr(_, k, c) => (ExprSlot::Rhs(k), c + 1),
+                    DefPos::Item("exact", k) => (ExprSlot::Exact(k), 0),
+                    DefPos::Item(_, k) => (ExprSlot::Rhs(k), 0),
+                    _ => (ExprSlot::Rhs(0), 0),
+                };
+                Err((at, e.message, col))
+            }
+        })
+    }
+
+    /// The drafts' equation, for the presenter's preview (`None` when there are no drafts or
+    /// they do not compile).
+    pub fn draft_problem(&self) -> Option<(ProblemDef, Problem)> {
+        match self.draft()? {
+            Ok((def, p, _)) => Some((def, p)),
+            Err(_) => None,
+        }
+    }
+
+    /// Enter: the drafts become the equation everyone sees, if they compile (else nothing
+    /// changes and the error stays under its field). Returns whether the equation changed.
+    pub fn commit(&mut self) -> bool {
+        self.sync_params();
+        let Some(Ok((def, problem, _))) = self.draft() else {
+            return false;
+        };
+        let file_has_exact = self.file_def.as_ref().is_some_and(|f| f.exact.is_some());
+        self.dropped_exact = (file_has_exact && def.exact.is_none()).then(|| {
+            "the exact solution was dropped: it solved the file's equation, not the typed one"
+                .to_owned()
+        });
+        self.def = Some(def);
+        self.problem = Some(problem);
+        self.revision += 1;
+        self.refill_fields();
+        true
+    }
+
+    /// Esc: the fields back to the equation everyone sees.
+    pub fn revert(&mut self) {
+        self.refill_fields();
+    }
+
+    /// Why the equation has no exact solution now although its file gives one.
+    pub fn dropped_exact(&self) -> Option<&str> {
+        self.dropped_exact.as_deref()
+    }
+
+    /// Shows `def` (the presenter's preview copy of a widget takes the drafts' equation so);
+    /// `false`, and nothing changed, if it does not compile.
+    pub fn show_def(&mut self, def: ProblemDef) -> bool {
+        match def.compile(self.named()) {
+            Ok(p) => {
+                self.compiled_params = def.params.clone();
+                self.def = Some(def);
+                self.problem = Some(p);
+                self.revision += 1;
+                self.refill_fields();
+                true
+            }
+            Err(_) => false,
+        }
+    }
+
     /// Back to the file's equation (`R`).
     pub fn reset(&mut self) {
         if let Some(file_def) = &self.file_def
@@ -219,6 +357,7 @@ impl LiveOde {
             self.compiled_params = file_def.params.clone();
             self.revision += 1;
         }
+        self.dropped_exact = None;
         self.refill_fields();
     }
 

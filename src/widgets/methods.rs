@@ -106,10 +106,12 @@ impl MethodSet {
     }
 
     /// One checkbox per method, labelled in its colour.
+    /// (Where controls are the presenter's: the shown ones as a legend.)
     pub fn toggles_ui(&mut self, ui: &mut egui::Ui) {
         for e in &mut self.entries {
             let color = super::style::text_color(ui, e.color);
-            ui.checkbox(
+            super::style::toggle(
+                ui,
                 &mut e.shown,
                 egui::RichText::new(&e.method.name).color(color).strong(),
             );
@@ -140,7 +142,7 @@ impl Path {
             f_evals: sol.f_evals as usize,
             diverged_at: match sol.outcome {
                 Outcome::Finished => None,
-                Outcome::Diverged { t } | Outcome::Failed { t, .. } => Some(t),
+                Outcome::Diverged { t } | Outcome::Failed { t, .. } | Outcome::Stiff { t } => Some(t),
             },
             ..Default::default()
         };

@@ -54,6 +54,7 @@ macro_rules! ode_plumbing {
 
 pub mod colors;
 pub mod convergence;
+pub mod labels;
 pub mod live_ode;
 pub mod methods;
 pub mod neptune;

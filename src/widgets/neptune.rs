@@ -4,10 +4,11 @@
 //! crash. The printed limits use λ, the eigenvalue of the equation's Jacobian at the start with
 //! the largest modulus (exact for y' = λy and the oscillator's ±i).
 
-use egui_plot::{Line, MarkerShape, Plot, PlotPoint, Points, Text};
+use egui_plot::{Line, MarkerShape, PlotPoint, Points};
 
 use std::path::Path as FsPath;
 
+use super::labels;
 use super::live_ode::LiveOde;
 use super::methods::{MethodSet, Path, fixed_path, reference_path, steps_for};
 use super::stability::{C, stable_h_limit};
@@ -193,13 +194,11 @@ impl SlideWidget for Neptune {
             .map(|(_, name, color, path)| (name, color, clip(&path, clamp)))
             .collect();
         let y_name = p.vars[0].clone();
-        let diverged_text = style::text_color(ui, style::DIVERGED);
-        Plot::new("neptune")
-            .allow_drag(false)
-            .allow_zoom(false)
-            .allow_scroll(false)
-            .x_axis_label("t")
-            .y_axis_label(y_name)
+        let u = style::unit(ui);
+        style::y_name_ui(ui, &y_name);
+        let mut labels = Vec::new();
+        let mut obstacles_at = Vec::new();
+        let shown = style::plot(ui, "neptune", "t")
             .default_x_bounds(t0, t_end)
             .default_y_bounds(-clamp * 1.1, clamp * 1.1)
             .show(ui, |p| {
@@ -207,18 +206,22 @@ impl SlideWidget for Neptune {
                     [t0, -clamp * 1.1],
                     [t_end, clamp * 1.1],
                 ));
-                p.line(Line::new("exact", exact).color(ink).width(2.0));
+                p.line(
+                    Line::new("exact", exact)
+                        .color(ink)
+                        .width(style::REFERENCE_WIDTH * u),
+                );
                 for (name, color, (pts, exit)) in &paths {
                     let color = *color;
                     p.line(
                         Line::new(name.as_str(), pts.clone())
                             .color(color)
-                            .width(style::PATH_WIDTH),
+                            .width(style::PATH_WIDTH * u),
                     );
                     p.points(
                         Points::new(name.as_str(), pts.clone())
                             .color(color)
-                            .radius(3.0),
+                            .radius(0.6 * style::MARKER_RADIUS * u),
                     );
                     if let Some(e) = exit {
                         p.points(
@@ -229,28 +232,31 @@ impl SlideWidget for Neptune {
                                     MarkerShape::Down
                                 })
                                 .color(style::DIVERGED)
-                                .radius(12.0)
+                                .radius(2.0 * style::KEY_MARKER_RADIUS * u)
                                 .filled(true),
                         );
+                        obstacles_at.push(PlotPoint::new(e[0], e[1]));
+                        // beside the marker, below it when it left upwards
                         let anchor = if e[1] > 0.0 {
                             egui::Align2::LEFT_TOP
                         } else {
                             egui::Align2::LEFT_BOTTOM
                         };
-                        p.text(
-                            Text::new(
-                                "diverged",
-                                PlotPoint::new(e[0] + 0.05 * (t_end - t0), e[1]),
-                                egui::RichText::new(format!("{name} diverged: off to Neptune!"))
-                                    .size(22.0)
-                                    .strong()
-                                    .color(diverged_text),
-                            )
-                            .anchor(anchor),
-                        );
+                        labels.push(labels::PlotLabel {
+                            text: format!("{name} diverged: off to Neptune!"),
+                            color: style::DIVERGED,
+                            at: PlotPoint::new(e[0], e[1]),
+                            anchor,
+                        });
                     }
                 }
             });
+        let t = &shown.transform;
+        let obstacles: Vec<egui::Rect> = obstacles_at
+            .iter()
+            .map(|&e| labels::marker_rect(t, e, 2.0 * style::KEY_MARKER_RADIUS * u))
+            .collect();
+        labels::draw(ui, t, &labels, &obstacles);
     }
 
     fn params(&mut self) -> Vec<Param<'_>> {

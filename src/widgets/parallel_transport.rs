@@ -136,13 +136,14 @@ fn fish_shapes(
     len_m: f32,
     body: Color32,
     ink: Color32,
+    unit: f32,
 ) -> Vec<egui::Shape> {
     let Some(q) = q else {
         let (c, _) = view.project(at);
         return vec![egui::Shape::circle_stroke(
             c,
             len_m * view.px_per_m * 0.35,
-            Stroke::new(1.5, UNDEFINED),
+            Stroke::new(1.5 * unit, UNDEFINED),
         )];
     };
     let (f, u) = (q * FISH_FORWARD, q * FISH_UP);
@@ -155,9 +156,13 @@ fn fish_shapes(
     let tail_r = p(-f * 0.5 - s * 0.28);
     let fin = vec![p(f * 0.25), p(u * 0.6 - f * 0.1), p(-f * 0.35)];
     vec![
-        egui::Shape::convex_polygon(vec![nose, tail_l, tail_r], body, Stroke::new(1.0, body)),
+        egui::Shape::convex_polygon(
+            vec![nose, tail_l, tail_r],
+            body,
+            Stroke::new(unit, body),
+        ),
         egui::Shape::convex_polygon(fin, ink, Stroke::NONE),
-        egui::Shape::line_segment([p(Vec3::ZERO), p(u * 0.6)], Stroke::new(1.5, ink)),
+        egui::Shape::line_segment([p(Vec3::ZERO), p(u * 0.6)], Stroke::new(1.5 * unit, ink)),
     ]
 }
 
@@ -184,9 +189,16 @@ fn view_ui(
         ui.visuals().widgets.noninteractive.bg_stroke,
         egui::StrokeKind::Inside,
     );
-    let view = View::fit(&c.line, spec.yaw_deg, spec.pitch_deg, rect.shrink(8.0));
+    let u = style::unit(ui);
+    // the panel's title takes the top line; the fish are fitted below it, never over it
+    let title_h = ui.text_style_height(&egui::TextStyle::Body) + 16.0 * u;
+    let fish_rect = Rect::from_min_max(rect.min + vec2(0.0, title_h), rect.max).shrink(8.0 * u);
+    let view = View::fit(&c.line, spec.yaw_deg, spec.pitch_deg, fish_rect);
     let line: Vec<Pos2> = c.line.iter().map(|p| view.project(*p).0).collect();
-    painter.add(egui::Shape::line(line, Stroke::new(2.0, style::FIELD)));
+    painter.add(egui::Shape::line(
+        line,
+        Stroke::new(style::REFERENCE_WIDTH * u, style::FIELD),
+    ));
     let len_m = {
         let total: f32 = c.line.windows(2).map(|w| (w[1] - w[0]).length()).sum();
         (total / c.frames.len() as f32 * 1.1).min(1.5)
@@ -207,7 +219,7 @@ fn view_ui(
         };
         let shown = i == step || i == step + 1;
         let len = if shown { len_m * 1.5 } else { len_m };
-        for shape in fish_shapes(&view, s.position, q, len, body, ink) {
+        for shape in fish_shapes(&view, s.position, q, len, body, ink, u) {
             painter.add(shape);
         }
         if shown {
@@ -215,14 +227,18 @@ fn view_ui(
             painter.circle_stroke(
                 c,
                 len * view.px_per_m * 0.75,
-                Stroke::new(1.5, style::ink(ui).gamma_multiply(0.6)),
+                Stroke::new(1.5 * u, style::ink(ui).gamma_multiply(0.6)),
             );
         }
     }
     if frenet {
         for &i in &c.frenet_flips {
             let (at, _) = view.project(c.frames[i].position);
-            painter.circle_stroke(at, len_m * view.px_per_m, Stroke::new(2.5, style::DIVERGED));
+            painter.circle_stroke(
+                at,
+                len_m * view.px_per_m,
+                Stroke::new(2.5 * u, style::DIVERGED),
+            );
             painter.text(
                 at + vec2(0.0, -len_m * view.px_per_m * 1.2),
                 egui::Align2::CENTER_BOTTOM,
@@ -238,7 +254,7 @@ fn view_ui(
         "parallel transport: q ← normalize(q(R) q)"
     };
     painter.text(
-        rect.left_top() + vec2(10.0, 8.0),
+        rect.left_top() + vec2(10.0, 8.0) * u,
         egui::Align2::LEFT_TOP,
         title,
         egui::TextStyle::Body.resolve(ui.style()),
@@ -269,6 +285,12 @@ impl SlideWidget for ParallelTransport {
         self.spec.step = self.spec.step.min(n - 2);
         ui.horizontal_wrapped(|ui| {
             for shape in PathShape::ALL {
+                if !style::controls_shown(ui) {
+                    if self.spec.path == shape {
+                        ui.label(shape.label());
+                    }
+                    continue;
+                }
                 if ui
                     .selectable_label(self.spec.path == shape, shape.label())
                     .clicked()
@@ -277,11 +299,14 @@ impl SlideWidget for ParallelTransport {
                     self.spec.step = 0;
                 }
             }
-            ui.add(egui::Slider::new(&mut self.spec.step, 0..=n - 2).text("step  [ ]"));
+            style::slider(ui, &mut self.spec.step, 0..=n - 2, "step  [ ]", false);
         });
         let step = self.shown_step();
         let i = self.spec.step;
-        let text_h = ui.text_style_height(&egui::TextStyle::Monospace) * 6.2;
+        // the five readout lines below the views, with their spacing: they must end above the
+        // slot's bottom (the footer), not under it
+        let line_h = ui.text_style_height(&egui::TextStyle::Monospace) + ui.spacing().item_spacing.y;
+        let text_h = 5.0 * line_h + ui.spacing().item_spacing.y;
         let avail = ui.available_rect_before_wrap();
         let views_h = (avail.height() - text_h).max(80.0);
         let gap = ui.spacing().item_spacing.x;

@@ -281,21 +281,19 @@ impl SlideWidget for RigidBodyView {
     fn ui(&mut self, ui: &mut egui::Ui) {
         style::projector_text(ui);
         ui.horizontal(|ui| {
-            if ui
-                .button(if self.spec.playing { "pause" } else { "play" })
-                .clicked()
-            {
-                self.spec.playing = !self.spec.playing;
+            if style::controls_shown(ui) {
+                if ui
+                    .button(if self.spec.playing { "pause" } else { "play" })
+                    .clicked()
+                {
+                    self.spec.playing = !self.spec.playing;
+                }
+                if ui.button("restart").clicked() {
+                    self.spec.t = 0.0;
+                }
             }
-            if ui.button("restart").clicked() {
-                self.spec.t = 0.0;
-            }
-            ui.add(
-                egui::Slider::new(&mut self.spec.h, 0.002..=0.2)
-                    .logarithmic(true)
-                    .text("h"),
-            );
-            ui.add(egui::Slider::new(&mut self.spec.n, 1..=N_MAX).text("points per axis"));
+            style::slider(ui, &mut self.spec.h, 0.002..=0.2, "h", true);
+            style::slider(ui, &mut self.spec.n, 1..=N_MAX, "points per axis", false);
             ui.label(format!("t = {:.1}", self.spec.t));
         });
         if self.spec.playing {
@@ -307,7 +305,11 @@ impl SlideWidget for RigidBodyView {
         let dims = box_dims(self.inertia());
         let n = self.runs.len().max(1) as f32;
         let w = (ui.available_width() - ui.spacing().item_spacing.x * (n - 1.0)) / n;
-        let h = (ui.available_height() - 175.0).max(80.0);
+        let u = style::unit(ui);
+        // below each box: its name and three readouts, then the inertia line under all
+        let line_h = ui.text_style_height(&egui::TextStyle::Body) + ui.spacing().item_spacing.y;
+        let text_h = 5.0 * line_h + 2.0 * ui.spacing().item_spacing.y;
+        let h = (ui.available_height() - text_h).max(80.0 * u);
         let frame = ui.visuals().widgets.noninteractive.bg_stroke;
         ui.horizontal_top(|ui| {
             for run in &self.runs {

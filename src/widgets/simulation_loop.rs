@@ -252,27 +252,32 @@ fn loop_ui(ui: &mut egui::Ui, n: &LoopNumbers, steps: u64) {
     let accent = style::RK4;
     let title_color = style::text_color(ui, accent);
     let avail = ui.available_rect_before_wrap();
-    let rect = Rect::from_min_size(avail.min, vec2(avail.width(), avail.height().max(200.0)));
+    let u = style::unit(ui);
+    let rect = Rect::from_min_size(avail.min, vec2(avail.width(), avail.height().max(200.0 * u)));
     ui.allocate_rect(rect, egui::Sense::hover());
     let painter = ui.painter_at(rect);
     let title_font = egui::TextStyle::Body.resolve(ui.style());
-    let mut mono = egui::TextStyle::Monospace.resolve(ui.style());
-    mono.size *= 0.85;
+    let mono = egui::TextStyle::Monospace.resolve(ui.style());
     let centres = stage_centres(rect);
     let mut boxes = Vec::new();
     for ((title, lines), centre) in stages(n, steps).into_iter().zip(centres) {
         let t = painter.layout_no_wrap(title.into(), title_font.clone(), title_color);
         let body = painter.layout_no_wrap(lines.join("\n"), mono.clone(), ink);
         let size =
-            vec2(t.size().x.max(body.size().x), t.size().y + body.size().y) + vec2(16.0, 12.0);
+            vec2(t.size().x.max(body.size().x), t.size().y + body.size().y) + vec2(16.0, 12.0) * u;
         let r = Rect::from_center_size(centre, size);
         boxes.push(r);
-        painter.rect_filled(r, 8.0, ui.visuals().extreme_bg_color);
-        painter.rect_stroke(r, 8.0, Stroke::new(1.5, accent), egui::StrokeKind::Inside);
-        painter.galley(r.min + vec2(8.0, 6.0), t.clone(), title_color);
-        painter.galley(r.min + vec2(8.0, 6.0 + t.size().y), body, ink);
+        painter.rect_filled(r, 8.0 * u, ui.visuals().extreme_bg_color);
+        painter.rect_stroke(
+            r,
+            8.0 * u,
+            Stroke::new(1.5 * u, accent),
+            egui::StrokeKind::Inside,
+        );
+        painter.galley(r.min + vec2(8.0, 6.0) * u, t.clone(), title_color);
+        painter.galley(r.min + vec2(8.0 * u, 6.0 * u + t.size().y), body, ink);
     }
-    let stroke = Stroke::new(2.0, ink.gamma_multiply(0.7));
+    let stroke = Stroke::new(2.0 * u, ink.gamma_multiply(0.7));
     for k in 0..6 {
         let (a, b) = (boxes[k], boxes[(k + 1) % 6]);
         let (from, to) = (a.center(), b.center());
@@ -280,12 +285,12 @@ fn loop_ui(ui: &mut egui::Ui, n: &LoopNumbers, steps: u64) {
         let clip = |r: Rect, p: Pos2, towards: Pos2| {
             let d = towards - p;
             let tx = if d.x.abs() > 1e-3 {
-                (r.width() * 0.5 + 6.0) / d.x.abs()
+                (r.width() * 0.5 + 6.0 * u) / d.x.abs()
             } else {
                 f32::MAX
             };
             let ty = if d.y.abs() > 1e-3 {
-                (r.height() * 0.5 + 6.0) / d.y.abs()
+                (r.height() * 0.5 + 6.0 * u) / d.y.abs()
             } else {
                 f32::MAX
             };
@@ -314,10 +319,11 @@ impl SlideWidget for SimulationLoop {
         ui.set_max_width(ui.available_width());
         ui.horizontal_wrapped(|ui| {
             let label = if self.spec.playing { "pause" } else { "play" };
-            if ui.button(label).clicked() {
+            let controls = style::controls_shown(ui);
+            if controls && ui.button(label).clicked() {
                 self.spec.playing = !self.spec.playing;
             }
-            if ui.button("restart").clicked() {
+            if controls && ui.button("restart").clicked() {
                 self.world = None; // the body again as the scene file starts it
             }
             let current = self.spec.integrator.or(match &self.world {
@@ -331,6 +337,12 @@ impl SlideWidget for SimulationLoop {
                     false => style::text_color(ui, style::integrator_color(m)),
                 };
                 let text = egui::RichText::new(m.name()).color(color);
+                if !controls {
+                    if on {
+                        ui.label(text);
+                    }
+                    continue;
+                }
                 if ui.selectable_label(on, text).clicked() {
                     self.spec.integrator = Some(m);
                 }

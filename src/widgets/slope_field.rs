@@ -6,7 +6,7 @@
 
 use std::path::Path as FsPath;
 
-use egui_plot::{Arrows, Line, Plot, PlotPoint, PlotPoints, Points};
+use egui_plot::{Arrows, Line, PlotPoint, PlotPoints, Points};
 
 use super::live_ode::LiveOde;
 use super::methods::{
@@ -133,13 +133,20 @@ impl SlopeField {
         let extent = (vx1 - vx0).abs().max((vy1 - vy0).abs()).max(1.0);
         let bound = 1e3 * extent;
         let n = steps_for(t0, s.t_end, h, MAX_STEPS);
-        let reference = reference_path(&p, t0, &x0, s.t_end.max(t0 + 1e-9));
+        // `exact: false`: no reference solve and no global error (against a coarse reference
+        // it would be a number that means nothing)
+        let reference = if s.exact {
+            reference_path(&p, t0, &x0, s.t_end.max(t0 + 1e-9))
+        } else {
+            Path::default()
+        };
+        let with_error = s.exact;
         let paths = self
             .methods
             .shown()
             .map(|m| {
                 let path = fixed_path(&p, m.method.scheme(), t0, &x0, h, n, bound);
-                let error = if path.diverged_at.is_some() {
+                let error = if path.diverged_at.is_some() || !with_error {
                     None
                 } else {
                     let t_last = *path.ts.last().unwrap_or(&t0);
@@ -336,7 +343,8 @@ impl SlideWidget for SlopeField {
         ui.horizontal(|ui| {
             style::h_slider(ui, &mut self.spec.h, H_RANGE);
             self.methods.toggles_ui(ui);
-            ui.checkbox(
+            style::toggle(
+                ui,
                 &mut self.spec.exact,
                 egui::RichText::new("exact")
                     .color(style::text_color(ui, style::EXACT))
@@ -361,11 +369,15 @@ impl SlideWidget for SlopeField {
         // Errors line first, so the plot can take the rest of the height.
         ui.horizontal(|ui| {
             ui.label(egui::RichText::new(label).strong());
-            ui.label("  global error at the end:");
+            if self.spec.exact {
+                ui.label("  global error at the end:");
+            }
             for p in &c.paths {
                 let txt = match (p.error, p.diverged_at) {
                     (_, Some(t)) => format!("{} diverged at t = {}", p.name, fmt_num(t)),
                     (Some(e), None) => format!("{} {}", p.name, fmt_num(e)),
+                    // no reference asked for: nothing to say but that it did not diverge
+                    (None, None) if !self.spec.exact => continue,
                     (None, None) => format!("{} –", p.name),
                 };
                 ui.colored_label(
@@ -376,61 +388,59 @@ impl SlideWidget for SlopeField {
         });
         let show_exact = self.spec.exact;
         let start = self.spec.start.unwrap_or((x0, y0));
-        let plot = Plot::new("slope-field")
-            .allow_drag(false)
-            .allow_zoom(false)
-            .allow_scroll(false)
-            .allow_boxed_zoom(false)
-            .allow_double_click_reset(false)
-            .show_x(false)
-            .show_y(false)
-            .x_axis_label(x_name)
-            .y_axis_label(y_name)
+        let u = style::unit(ui);
+        style::y_name_ui(ui, &y_name);
+        let is_phase = phase.is_some();
+        // Free by default: the plot fills its slot and shows exactly `view` (a t–x plot, or a
+        // phase plane of mixed units); Equal on request for geometry.
+        let aspect = self.spec.aspect.unwrap_or(crate::deck::widgets::Aspect::Free);
+        let plot = style::with_aspect(style::plot(ui, "slope-field", &x_name), aspect)
             .default_x_bounds(x0, x1)
             .default_y_bounds(y0, y1);
-        let is_phase = phase.is_some();
-        let plot = if is_phase {
-            plot.data_aspect(1.0)
-        } else {
-            plot
-        };
         let resp = plot.show(ui, |p| {
-            p.set_plot_bounds(egui_plot::PlotBounds::from_min_max([x0, y0], [x1, y1]));
+            // `view`, with room for a marker's radius on every side: a start or end point on
+            // the view's edge is drawn whole, not cut in half by the frame
+            let (pad_x, pad_y) = style::marker_pad(p.transform(), (x1 - x0, y1 - y0), u);
+            p.set_plot_bounds(egui_plot::PlotBounds::from_min_max(
+                [x0 - pad_x, y0 - pad_y],
+                [x1 + pad_x, y1 + pad_y],
+            ));
             p.add(
                 Arrows::new(
                     "field",
                     PlotPoints::from(origins.clone()),
                     PlotPoints::from(tips.clone()),
                 )
-                .color(style::FIELD)
-                .tip_length(if is_phase { 5.0 } else { 0.0 })
+                .color(style::thin(style::FIELD, u))
+                .tip_length(if is_phase { 5.0 * u } else { 0.0 })
                 .allow_hover(false),
             );
             if show_exact {
                 p.line(
                     Line::new("exact", c.reference.clone())
                         .color(ink)
-                        .width(2.0),
+                        .width(style::REFERENCE_WIDTH * u),
                 );
             }
-            for path in &c.paths {
+            let n_paths = c.paths.len();
+            for (i, path) in c.paths.iter().enumerate() {
                 p.line(
                     Line::new(path.name.as_str(), path.line.clone())
                         .color(path.color)
-                        .width(style::PATH_WIDTH),
+                        .width(style::stacked_width(i, n_paths) * u),
                 );
                 if !path.markers.is_empty() {
                     p.points(
                         Points::new(path.name.as_str(), path.markers.clone())
                             .color(path.color)
-                            .radius(3.5),
+                            .radius(style::MARKER_RADIUS * 0.7 * u),
                     );
                 }
             }
             p.points(
                 Points::new("start", vec![[start.0, start.1]])
                     .color(ink)
-                    .radius(7.0)
+                    .radius(style::KEY_MARKER_RADIUS * u)
                     .shape(egui_plot::MarkerShape::Circle),
             );
             let r = p.response();
@@ -484,7 +494,9 @@ impl SlideWidget for SlopeField {
         let (t0, x0) = self.start_state(&p);
         let (paths, reference) = self.compute();
         let mut series: Vec<(String, Path)> = paths.into_iter().map(|m| (m.key, m.path)).collect();
-        series.push(exact_series(&p, t0, &x0, reference));
+        if self.spec.exact {
+            series.push(exact_series(&p, t0, &x0, reference));
+        }
         Some(PlotData {
             vars: p.vars.clone(),
             series,

@@ -4,7 +4,7 @@
 //! two or more variables can be drawn (its first two, one panel per method), with its exact
 //! (or reference) solution dashed over one revolution.
 
-use egui_plot::{Line, Plot, PlotPoints, Points};
+use egui_plot::{Line, PlotPoints, Points};
 
 use std::path::Path as FsPath;
 
@@ -182,41 +182,53 @@ impl SlideWidget for Spiral {
         };
         let data = &computed.panels;
         let n = data.len().max(1) as f32;
+        let u = style::unit(ui);
         let spacing = ui.spacing().item_spacing.x;
-        let w = ((ui.available_width() - spacing * (n - 1.0)) / n).max(50.0);
-        let plot_h = (ui.available_height() - 70.0).max(80.0);
+        let w = ((ui.available_width() - spacing * (n - 1.0)) / n).max(50.0 * u);
+        // below each plot: its name and its radii, two text lines
+        let text_h = 2.0 * (ui.text_style_height(&egui::TextStyle::Body) + ui.spacing().item_spacing.y)
+            + 2.0 * ui.spacing().item_spacing.y;
+        let plot_h = (ui.available_height() - text_h).max(80.0 * u);
         let side = w.min(plot_h);
+        // one range for every panel, so the three can be compared: the widest spiral's
+        let lim = data.iter().map(|p| p.lim).fold(0.0, f64::max);
+        let aspect = self.spec.aspect.unwrap_or(crate::deck::widgets::Aspect::Equal);
         ui.horizontal_top(|ui| {
             for panel in data {
-                let (name, lim, end) = (&panel.name, panel.lim, panel.end);
+                let (name, end) = (&panel.name, panel.end);
                 ui.vertical(|ui| {
                     ui.set_width(w);
                     let color = panel.color;
                     let circle = PlotPoints::from(computed.exact.clone());
-                    Plot::new(format!("spiral-{name}"))
+                    style::with_aspect(style::plot(ui, format!("spiral-{name}"), ""), aspect)
                         .width(w)
                         .height(side)
-                        .data_aspect(1.0)
-                        .allow_drag(false)
-                        .allow_zoom(false)
-                        .allow_scroll(false)
-                        .show_x(false)
-                        .show_y(false)
                         .default_x_bounds(-lim, lim)
                         .default_y_bounds(-lim, lim)
                         .show(ui, |p| {
-                            p.line(
-                                Line::new("exact", circle)
-                                    .color(ink)
-                                    .width(1.5)
-                                    .style(egui_plot::LineStyle::dashed_loose()),
-                            );
+                            p.set_plot_bounds(egui_plot::PlotBounds::from_min_max(
+                                [-lim, -lim],
+                                [lim, lim],
+                            ));
                             p.line(
                                 Line::new(name.as_str(), panel.line.clone())
                                     .color(color)
-                                    .width(style::PATH_WIDTH),
+                                    .width(style::PATH_WIDTH * u),
                             );
-                            p.points(Points::new("end", vec![end]).color(color).radius(5.0));
+                            p.points(
+                                Points::new("end", vec![end])
+                                    .color(color)
+                                    .radius(style::MARKER_RADIUS * u),
+                            );
+                            // over the path, so the circle shows where a method keeps to it
+                            p.line(
+                                Line::new("exact", circle)
+                                    .color(ink)
+                                    .width(style::REFERENCE_WIDTH * u)
+                                    .style(egui_plot::LineStyle::Dashed {
+                                        length: 14.0 * u,
+                                    }),
+                            );
                         });
                     ui.colored_label(
                         style::text_color(ui, color),

@@ -2,7 +2,7 @@
 //! RK4 and any tableau written in the deck. R is the method's stability function, evaluated
 //! from its Butcher tableau, so a tableau in the deck gets its true region.
 
-use egui_plot::{Line, Plot, PlotImage, PlotPoint};
+use egui_plot::{Line, PlotImage, PlotPoint};
 
 use super::methods::{MethodSet, is_rk4_typo};
 use super::style;
@@ -224,7 +224,7 @@ impl SlideWidget for Stability {
                 );
             }
             if self.spec.lambda.is_some() {
-                ui.add(egui::Slider::new(&mut self.spec.h, 0.01..=4.0).text("h"));
+                style::slider(ui, &mut self.spec.h, 0.01..=4.0, "h", false);
             }
         });
         if let Some((lr, li)) = self.spec.lambda {
@@ -253,18 +253,15 @@ impl SlideWidget for Stability {
             .map(|(a, b)| [a * self.spec.h, b * self.spec.h]);
         // Keep circles round (aspect 1) and show the whole view: widen whichever axis the
         // plot's shape leaves room for, instead of letting the plot crop the other one.
+        let u = style::unit(ui);
+        style::y_name_ui(ui, "Im z");
         let avail = ui.available_size();
         let shape = f64::from((avail.x / avail.y.max(1.0)).clamp(0.2, 5.0));
         let (cx, cy) = ((x0 + x1) / 2.0, (y0 + y1) / 2.0);
         let half_w = ((x1 - x0) / 2.0).max((y1 - y0) / 2.0 * shape);
         let half_h = ((y1 - y0) / 2.0).max((x1 - x0) / 2.0 / shape);
-        Plot::new("stability")
+        style::plot(ui, "stability", "Re z")
             .data_aspect(1.0)
-            .allow_drag(false)
-            .allow_zoom(false)
-            .allow_scroll(false)
-            .x_axis_label("Re z")
-            .y_axis_label("Im z")
             .default_x_bounds(cx - half_w, cx + half_w)
             .default_y_bounds(cy - half_h, cy + half_h)
             .show(ui, |p| {
@@ -289,7 +286,7 @@ impl SlideWidget for Stability {
                         p.line(
                             Line::new(name.clone(), s.to_vec())
                                 .color(*color)
-                                .width(2.5)
+                                .width(style::PATH_WIDTH * u)
                                 .allow_hover(false),
                         );
                     }
@@ -298,7 +295,7 @@ impl SlideWidget for Stability {
                     p.points(
                         egui_plot::Points::new("z = hλ", vec![z, [z[0], -z[1]]])
                             .color(ink)
-                            .radius(7.0),
+                            .radius(style::KEY_MARKER_RADIUS * u),
                     );
                 }
             });

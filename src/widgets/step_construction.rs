@@ -2,10 +2,11 @@
 //! the midpoint, then the full step with it; RK4's k1..k4 as arrows, then their weighted
 //! combination. `[` and `]` step backwards and forwards through the construction.
 
-use egui_plot::{Arrows, Line, Plot, PlotPoints, Points, Text};
+use egui_plot::{Arrows, Line, PlotPoint, PlotPoints, Points};
 
 use std::path::Path as FsPath;
 
+use super::labels;
 use super::live_ode::LiveOde;
 use super::methods::fixed_path;
 use super::style::{self, fmt_num};
@@ -221,6 +222,13 @@ impl SlideWidget for StepConstruction {
                     style::text_color(ui, style::method_color(c.method()))
                 };
                 let text = egui::RichText::new(c.name()).color(colour).strong();
+                if !style::controls_shown(ui) {
+                    // the audience sees which method is built, not the switch
+                    if m == c {
+                        ui.label(egui::RichText::new(c.name()).color(style::text_color(ui, style::method_color(c.method()))).strong());
+                    }
+                    continue;
+                }
                 if ui.selectable_label(m == c, text).clicked() {
                     self.spec.method = c.reference();
                     self.spec.stage = 0;
@@ -228,9 +236,9 @@ impl SlideWidget for StepConstruction {
             }
         });
         ui.horizontal(|ui| {
-            ui.spacing_mut().slider_width = 120.0;
-            ui.add(egui::Slider::new(&mut self.spec.h, H_RANGE.0..=H_RANGE.1).text("h"));
-            ui.add(egui::Slider::new(&mut self.spec.stage, 0..=n).text("stage  [ ]"));
+            ui.spacing_mut().slider_width = 160.0 * style::unit(ui);
+            style::slider(ui, &mut self.spec.h, H_RANGE.0..=H_RANGE.1, "h", false);
+            style::slider(ui, &mut self.spec.stage, 0..=n, "stage  [ ]", false);
         });
         let p = match self.problem() {
             Ok(p) => p,
@@ -268,26 +276,32 @@ impl SlideWidget for StepConstruction {
         } else {
             ui.label(format!("stage {stage} of {n}: press ] to continue"));
         }
-        let visuals = ui.visuals().clone();
-        Plot::new("step-construction")
+        let u = style::unit(ui);
+        style::y_name_ui(ui, "x");
+        let mut labels = Vec::new();
+        let mut points_at = vec![PlotPoint::new(t0, x0)];
+        let shown = style::plot(ui, "step-construction", "t")
             .width(ui.available_width())
-            .allow_drag(false)
-            .allow_zoom(false)
-            .allow_scroll(false)
-            .x_axis_label("t")
-            .y_axis_label("x")
             .include_x(t0 - 0.1 * h)
             .include_x(t0 + 1.2 * h)
             .show(ui, |p| {
-                p.line(Line::new("exact", exact).color(ink).width(2.0));
+                p.line(
+                    Line::new("exact", exact)
+                        .color(ink)
+                        .width(style::REFERENCE_WIDTH * u),
+                );
                 for a in arrows.iter().filter(|a| a.stage <= stage) {
                     let (c, w) = if a.faint {
                         (style::FIELD, 0.0)
                     } else {
-                        (color, 12.0)
+                        (color, 12.0 * u)
                     };
                     if a.faint {
-                        p.line(Line::new("slope", vec![a.from, a.to]).color(c).width(4.0));
+                        p.line(
+                            Line::new("slope", vec![a.from, a.to])
+                                .color(c)
+                                .width(4.0 * u),
+                        );
                     } else {
                         p.add(
                             Arrows::new(
@@ -301,35 +315,46 @@ impl SlideWidget for StepConstruction {
                         p.line(
                             Line::new(a.label.clone(), vec![a.from, a.to])
                                 .color(c)
-                                .width(style::PATH_WIDTH),
+                                .width(style::PATH_WIDTH * u),
                         );
                     }
                     if !a.label.is_empty() {
-                        let pos = egui_plot::PlotPoint::new(a.to[0], a.to[1]);
-                        p.text(
-                            Text::new(
-                                a.label.clone(),
-                                pos,
-                                egui::RichText::new(&a.label)
-                                    .size(20.0)
-                                    .color(style::text_color_in(&visuals, c)),
-                            )
-                            .anchor(a.anchor),
-                        );
+                        labels.push(labels::PlotLabel {
+                            text: a.label.clone(),
+                            color: c,
+                            at: PlotPoint::new(a.to[0], a.to[1]),
+                            anchor: a.anchor,
+                        });
                     }
                 }
-                p.points(Points::new("x0", vec![[t0, x0]]).color(ink).radius(6.0));
+                p.points(
+                    Points::new("x0", vec![[t0, x0]])
+                        .color(ink)
+                        .radius(style::KEY_MARKER_RADIUS * u),
+                );
                 if stage == n {
-                    p.points(Points::new("x1", vec![end]).color(color).radius(7.0));
+                    p.points(
+                        Points::new("x1", vec![end])
+                            .color(color)
+                            .radius(style::KEY_MARKER_RADIUS * u),
+                    );
+                    points_at.push(PlotPoint::new(end[0], end[1]));
                     if let Some(x) = truth {
                         p.points(
                             Points::new("exact x(t0+h)", vec![[t0 + h, x]])
                                 .color(ink)
-                                .radius(5.0),
+                                .radius(style::MARKER_RADIUS * u),
                         );
+                        points_at.push(PlotPoint::new(t0 + h, x));
                     }
                 }
             });
+        let t = &shown.transform;
+        let obstacles: Vec<egui::Rect> = points_at
+            .iter()
+            .map(|&e| labels::marker_rect(t, e, style::KEY_MARKER_RADIUS * u))
+            .collect();
+        labels::draw(ui, t, &labels, &obstacles);
     }
 
     fn params(&mut self) -> Vec<Param<'_>> {

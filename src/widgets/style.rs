@@ -45,8 +45,110 @@ pub fn integrator_color(m: crate::rigid::Integrator) -> Color32 {
     }
 }
 
-/// Line width of solution paths, in points.
+// Sizes in slide units: points on the 1920-wide canvas (see `app::theme`), turned into screen
+// points by [`unit`], so a thumbnail is the slide scaled down, markers and lines included.
+/// Line width of solution paths.
 pub const PATH_WIDTH: f32 = 3.0;
+/// The width of path `i` of `n` drawn in order: the first widest, the last [`PATH_WIDTH`], so
+/// two methods that agree (midpoint under RK4) both show, the earlier as a rim around the later.
+pub fn stacked_width(i: usize, n: usize) -> f32 {
+    PATH_WIDTH * (1.0 + 0.4 * n.saturating_sub(i + 1) as f32)
+}
+
+/// Exact solutions and other reference curves.
+pub const REFERENCE_WIDTH: f32 = 2.0;
+/// A computed point on a path (a step's end).
+pub const MARKER_RADIUS: f32 = 5.0;
+/// A point the slide is about (the start, the step's end, a λ marker).
+pub const KEY_MARKER_RADIUS: f32 = 7.0;
+
+/// Screen points per slide unit where `ui` draws: the slide's scale inside a slide canvas
+/// (read back from the canvas text style that `app::widget_style` sizes), 1 elsewhere.
+pub fn unit(ui: &egui::Ui) -> f32 {
+    unit_of(ui.style())
+}
+
+/// [`unit`] of a style.
+pub fn unit_of(style: &egui::Style) -> f32 {
+    style
+        .text_styles
+        .get(&egui::TextStyle::Name(crate::app::theme::CANVAS_STYLE.into()))
+        .map_or(1.0, |f| f.size / crate::app::theme::size::WIDGET_TEXT)
+}
+
+/// The plot every widget draws in: sizes in slide units (grid and tick-label spacing, so a
+/// thumbnail shows the same ticks as the slide), tick labels at full strength in the theme's
+/// text colour (egui_plot fades them towards the background), no hover crosshair (it drew
+/// unlabelled grid lines), no pan or zoom (a slide shows the view its author chose). The x
+/// axis is named below it; the y axis's name goes above the plot, upright ([`y_name_ui`]).
+pub fn plot<'a>(ui: &egui::Ui, id: impl egui::AsIdSalt, x_name: &str) -> egui_plot::Plot<'a> {
+    use egui_plot::AxisHints;
+    let u = unit(ui);
+    let ticks = ui.visuals().text_color();
+    let mut x_axis = AxisHints::new_x()
+        .tick_label_color(ticks)
+        .label_spacing(egui::Rangef::new(80.0 * u, 81.0 * u))
+        .min_thickness(14.0 * u);
+    if !x_name.is_empty() {
+        x_axis = x_axis.label(x_name.to_owned());
+    }
+    let y_axis = AxisHints::new_y()
+        .tick_label_color(ticks)
+        .label_spacing(egui::Rangef::new(40.0 * u, 41.0 * u))
+        .min_thickness(14.0 * u);
+    egui_plot::Plot::new(id)
+        .allow_drag(false)
+        .allow_zoom(false)
+        .allow_scroll(false)
+        .allow_boxed_zoom(false)
+        .allow_double_click_reset(false)
+        .show_x(false)
+        .show_y(false)
+        .show_crosshair(false)
+        .grid_spacing(egui::Rangef::new(8.0 * u, 300.0 * u))
+        // egui_plot draws grid lines one point wide: below one point per slide unit, fade them
+        // as a thinner line would cover less (a thumbnail's grid as light as the slide's)
+        .grid_color(thin(ui.visuals().text_color(), u))
+        .custom_x_axes(vec![x_axis])
+        .custom_y_axes(vec![y_axis])
+}
+
+/// `color` for a line egui_plot draws one point wide whatever we ask (grid lines, slope
+/// marks), faded where one slide unit is less than a point so it covers what it would at
+/// full size.
+pub fn thin(color: Color32, unit: f32) -> Color32 {
+    color.gamma_multiply(unit.clamp(0.0, 1.0))
+}
+
+/// How far (in data units, x and y) to widen a plot's view of size `span` so a key marker on
+/// its edge is drawn whole: the marker's radius plus a little, at the plot's size in `transform`.
+pub fn marker_pad(transform: &egui_plot::PlotTransform, span: (f64, f64), u: f32) -> (f64, f64) {
+    let frame = transform.frame();
+    let r = f64::from((KEY_MARKER_RADIUS + 3.0) * u);
+    let w = f64::from(frame.width()).max(1.0);
+    let h = f64::from(frame.height()).max(1.0);
+    (span.0.abs() * r / w, span.1.abs() * r / h)
+}
+
+/// The y axis's name, upright, above the plot's left edge (a rotated "v" read as ">").
+pub fn y_name_ui(ui: &mut egui::Ui, name: &str) {
+    if !name.is_empty() {
+        ui.label(egui::RichText::new(name).italics());
+        // the top tick label is centred on the frame's top edge: keep clear of it
+        ui.add_space(0.5 * ui.text_style_height(&egui::TextStyle::Body));
+    }
+}
+
+/// How a plot maps data to the screen ([`crate::deck::widgets::Aspect`]).
+pub fn with_aspect<'a>(
+    plot: egui_plot::Plot<'a>,
+    aspect: crate::deck::widgets::Aspect,
+) -> egui_plot::Plot<'a> {
+    match aspect {
+        crate::deck::widgets::Aspect::Equal => plot.data_aspect(1.0),
+        crate::deck::widgets::Aspect::Free => plot,
+    }
+}
 
 /// The theme's strongest text colour: exact solutions, start points, markers.
 pub fn ink(ui: &egui::Ui) -> Color32 {
@@ -122,11 +224,56 @@ impl Keys {
 
 /// The logarithmic step-size slider of the path widgets.
 pub fn h_slider(ui: &mut egui::Ui, h: &mut f64, range: (f64, f64)) {
-    ui.add(
-        egui::Slider::new(h, range.0..=range.1)
-            .logarithmic(true)
-            .text("h"),
-    );
+    slider(ui, h, range.0..=range.1, "h", true);
+}
+
+/// A text style only slides drawn with `controls: Presenter` define: widgets then show their
+/// values, not their sliders, checkboxes and buttons (the presenter view has those).
+pub const NO_CONTROLS_STYLE: &str = "lectern-no-controls";
+
+/// Whether widgets in `ui` draw their controls (sliders, checkboxes, buttons). With the
+/// deck's `controls: Presenter` the audience sees the plot and the values only.
+pub fn controls_shown(ui: &egui::Ui) -> bool {
+    !ui.style()
+        .text_styles
+        .contains_key(&egui::TextStyle::Name(NO_CONTROLS_STYLE.into()))
+}
+
+/// A slider labelled `label` (a key hint after two spaces, `"stage  [ ]"`, is dropped from
+/// the value), or, where controls are the presenter's, the value as text: `h = 0.500`.
+pub fn slider<N: egui::emath::Numeric>(
+    ui: &mut egui::Ui,
+    value: &mut N,
+    range: std::ops::RangeInclusive<N>,
+    label: &str,
+    logarithmic: bool,
+) {
+    if controls_shown(ui) {
+        ui.add(
+            egui::Slider::new(value, range)
+                .logarithmic(logarithmic)
+                .text(label),
+        );
+    } else {
+        let name = label.split("  ").next().unwrap_or(label);
+        let v = value.to_f64();
+        let text = if N::INTEGRAL {
+            format!("{name} = {v}")
+        } else {
+            format!("{name} = {}", fmt_num(v))
+        };
+        ui.label(text);
+    }
+}
+
+/// A checkbox, or where controls are the presenter's, its label when it is on (a legend
+/// entry) and nothing when it is off.
+pub fn toggle(ui: &mut egui::Ui, on: &mut bool, text: egui::RichText) {
+    if controls_shown(ui) {
+        ui.checkbox(on, text);
+    } else if *on {
+        ui.label(text);
+    }
 }
 
 /// A readable number for labels: 3 significant digits, scientific outside 1e-3..1e4.

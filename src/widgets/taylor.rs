@@ -1,7 +1,7 @@
 //! Widget 5: Taylor series: the truncations of order 1, 2, 3, … of a function around a point. Order 1
 //! is drawn in Euler's colour, 2 in midpoint's and 4 in RK4's: the order a method matches.
 
-use egui_plot::{Line, Plot, Points};
+use egui_plot::{Line, Points};
 
 use super::style;
 use super::{Param, SlideWidget};
@@ -102,8 +102,8 @@ impl SlideWidget for Taylor {
         }
         let (lo, hi) = self.spec.range;
         ui.horizontal(|ui| {
-            ui.add(egui::Slider::new(&mut self.spec.order, 1..=12).text("order  [ ]"));
-            ui.add(egui::Slider::new(&mut self.spec.a, lo..=hi).text("around a"));
+            style::slider(ui, &mut self.spec.order, 1..=12, "order  [ ]", false);
+            style::slider(ui, &mut self.spec.a, lo..=hi, "around a", false);
         });
         let s = self.spec.clone();
         ui.horizontal_wrapped(|ui| {
@@ -132,11 +132,8 @@ impl SlideWidget for Taylor {
             });
         let pad = 0.35 * (ymax - ymin).max(1.0);
         let (y0, y1) = (ymin - pad, ymax + pad);
-        Plot::new("taylor")
-            .allow_drag(false)
-            .allow_zoom(false)
-            .allow_scroll(false)
-            .x_axis_label("t")
+        let u = style::unit(ui);
+        style::plot(ui, "taylor", "t")
             .default_x_bounds(lo, hi)
             .default_y_bounds(y0, y1)
             .show(ui, |p| {
@@ -155,9 +152,9 @@ impl SlideWidget for Taylor {
                         .filter(|p| p[1].is_finite())
                         .collect();
                     let w = if matches!(n, 1 | 2 | 4) {
-                        style::PATH_WIDTH
+                        style::PATH_WIDTH * u
                     } else {
-                        2.0
+                        style::REFERENCE_WIDTH * u
                     };
                     p.line(
                         Line::new(format!("order {n}"), pts)
@@ -165,10 +162,18 @@ impl SlideWidget for Taylor {
                             .width(w),
                     );
                 }
-                p.line(Line::new(s.function.name(), f_pts).color(ink).width(3.5));
+                p.line(
+                    Line::new(s.function.name(), f_pts)
+                        .color(ink)
+                        .width(1.2 * style::PATH_WIDTH * u),
+                );
                 let fa = s.function.eval(s.a);
                 if fa.is_finite() {
-                    p.points(Points::new("a", vec![[s.a, fa]]).color(ink).radius(7.0));
+                    p.points(
+                        Points::new("a", vec![[s.a, fa]])
+                            .color(ink)
+                            .radius(style::KEY_MARKER_RADIUS * u),
+                    );
                 }
             });
     }

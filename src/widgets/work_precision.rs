@@ -202,9 +202,10 @@ impl SlideWidget for WorkPrecision {
     fn ui(&mut self, ui: &mut egui::Ui) {
         style::projector_text(ui);
         ui.horizontal_wrapped(|ui| {
-            ui.add(egui::Slider::new(&mut self.spec.levels, 3..=14).text("step sizes"));
+            style::slider(ui, &mut self.spec.levels, 3..=14, "step sizes", false);
             self.methods.toggles_ui(ui);
-            ui.checkbox(
+            style::toggle(
+                ui,
                 &mut self.spec.rk5,
                 egui::RichText::new("RK5")
                     .color(style::text_color(ui, style::RK5))
@@ -247,6 +248,8 @@ impl SlideWidget for WorkPrecision {
                 );
             }
         });
+        let u = style::unit(ui);
+        style::y_name_ui(ui, "error");
         let half = (ui.available_width() - ui.spacing().item_spacing.x) / 2.0;
         let height = ui.available_height();
         let results = &self.results;
@@ -256,7 +259,7 @@ impl SlideWidget for WorkPrecision {
                 ("wp-time", "seconds", true),
             ] {
                 ui.allocate_ui(egui::vec2(half, height), |ui| {
-                    log_axes_plot(id, xlab, "error")
+                    log_axes_plot(ui, id, xlab)
                         .width(half)
                         .height(height)
                         .show(ui, |p| {
@@ -274,14 +277,14 @@ impl SlideWidget for WorkPrecision {
                                     .collect();
                                 // squares mark a tolerance sweep, dots a step-size sweep
                                 let (shape, radius) = if c.adaptive {
-                                    (MarkerShape::Square, 5.0)
+                                    (MarkerShape::Square, style::MARKER_RADIUS * u)
                                 } else {
-                                    (MarkerShape::Circle, 4.5)
+                                    (MarkerShape::Circle, 0.9 * style::MARKER_RADIUS * u)
                                 };
                                 p.line(
                                     Line::new(c.name.clone(), v.clone())
                                         .color(c.color)
-                                        .width(style::PATH_WIDTH),
+                                        .width(style::PATH_WIDTH * u),
                                 );
                                 p.points(
                                     Points::new(c.name.clone(), v)

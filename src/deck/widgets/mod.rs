@@ -33,6 +33,15 @@ pub use step_construction::StepSpec;
 pub use taylor::{TaylorFn, TaylorSpec};
 pub use work_precision::WorkPrecisionSpec;
 
+/// How a plot maps its data to the screen: `Equal` keeps one unit the same length on both axes
+/// (a circle stays round; for geometry: phase portraits of x–y, the complex plane), `Free`
+/// stretches each axis to fill the plot (t–x plots, phase planes of mixed units such as x–v).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Aspect {
+    Equal,
+    Free,
+}
+
 /// Which widget a slide shows, with its parameters from the deck file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub enum WidgetSpec {

@@ -34,6 +34,10 @@ pub struct SlopeFieldSpec {
     /// The two variables of the phase plane, e.g. `plot: Some(("x", "v"))`.
     #[serde(default)]
     pub plot: Option<(String, String)>,
+    /// `aspect: Some(Equal)` for a phase plane whose axes share a unit; default `Free`: the
+    /// plot fills its slot and shows exactly `view`.
+    #[serde(default)]
+    pub aspect: Option<super::Aspect>,
 }
 
 pub fn default_h() -> f64 {

@@ -20,6 +20,9 @@ pub struct SpiralSpec {
     /// Draw the other methods' panels beside the first one's.
     #[serde(default = "yes")]
     pub compare: bool,
+    /// Default `Equal`: the exact circle stays round.
+    #[serde(default)]
+    pub aspect: Option<super::Aspect>,
 }
 
 pub fn default_h() -> f64 {

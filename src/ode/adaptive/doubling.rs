@@ -41,6 +41,8 @@ impl<'a, S: System + ?Sized> Doubling<'a, S> {
             fac_max: 4.0,
             alpha: 1.0 / (method.order() as f64 + 1.0),
             beta: 0.0,
+            predictive: false,
+            hold: 1.0,
         }
     }
 }

@@ -3,6 +3,7 @@
 //! for the implicit methods. All of them run [`drive`].
 
 use super::doubling::Doubling;
+use super::implicit_trials::{RadauTrial, RodasTrial};
 use super::pair_stepper::{Fast, PairStepper, Slices};
 use super::{Adaptive, Run, Trial, check, drive};
 use crate::ode::fixed::{FixedSolution, FixedSystem};
@@ -21,10 +22,12 @@ pub fn solve_adaptive<S: System + ?Sized>(
     solve_embedded(sys, Method::Dopri5, t0, x0, t_end, opts)
 }
 
-/// Integrates from t0 to t_end with an adaptive embedded pair (`dopri5`, `tsit5`, `vern6` …
-/// `vern9`, `dop853`): f-evaluations, accepted and rejected steps are counted in the
-/// solution; bad tolerances, a non-finite f and a step-size underflow end in `Failed`, a state
-/// beyond `opts.bound` in `Diverged`, and `opts.max_steps` bounds the work.
+/// Integrates from t0 to t_end with an adaptive method: an embedded pair (`dopri5`, `tsit5`,
+/// `vern6` … `vern9`, `dop853`) or a stiff solver (`rodas5p`, `radau5`). f-evaluations,
+/// accepted and rejected steps (and Jacobians and LUs) are counted in the solution; bad
+/// tolerances, a non-finite f, a failing Newton iteration and a step-size underflow end in
+/// `Failed`, a state beyond `opts.bound` in `Diverged`, a fired stiffness test in `Stiff`
+/// (with `opts.stop_if_stiff`), and `opts.max_steps` bounds the work.
 pub fn solve_embedded<S: System + ?Sized>(
     sys: &S,
     method: Method,
@@ -38,17 +41,29 @@ pub fn solve_embedded<S: System + ?Sized>(
         sol.outcome = outcome;
         return sol;
     }
-    with_pair!(
-        method,
-        |pair| {
-            let mut trial = PairStepper::new(pair, Slices(sys), x0.to_vec());
-            recorded(&mut trial, t0, t_end, &opts, control_of(pair), sol)
-        },
-        {
-            sol.outcome = not_a_pair(t0, method);
-            sol
+    match method {
+        Method::Rodas5p => {
+            let mut trial = RodasTrial::new(sys, x0);
+            // RODAS's controller: exponent 1/5 for the order-4 embedded estimate
+            recorded(&mut trial, t0, t_end, &opts, Controller::predictive(5, 6.0, 1.0), sol)
         }
-    )
+        Method::Radau5 => {
+            let mut trial = RadauTrial::new(sys, x0);
+            // radau5.f: err^(1/4), ratio in [1/5, 8], steps kept within 1 … 1.2
+            recorded(&mut trial, t0, t_end, &opts, Controller::predictive(4, 8.0, 1.2), sol)
+        }
+        _ => with_pair!(
+            method,
+            |pair| {
+                let mut trial = PairStepper::new(pair, Slices(sys), x0.to_vec());
+                recorded(&mut trial, t0, t_end, &opts, control_of(pair), sol)
+            },
+            {
+                sol.outcome = not_a_pair(t0, method);
+                sol
+            }
+        ),
+    }
 }
 
 fn control_of<const S: usize, P: Pair<S>>(_: P) -> Controller {
@@ -58,7 +73,7 @@ fn control_of<const S: usize, P: Pair<S>>(_: P) -> Controller {
 fn not_a_pair(t: f64, method: Method) -> Outcome {
     Outcome::Failed {
         t,
-        reason: format!("{method} is not an adaptive embedded pair"),
+        reason: format!("{method} is not an adaptive method"),
     }
 }
 
@@ -76,6 +91,7 @@ fn recorded<T: Trial>(
     sol.f_evals = trial.f_evals();
     sol.steps = run.steps;
     sol.rejected = run.rejected;
+    sol.work = trial.work();
     sol.outcome = run.outcome;
     sol
 }
@@ -156,7 +172,8 @@ fn finish_fixed<const N: usize, T: Trial>(
 }
 
 /// Implicit Euler or implicit midpoint with step-size control by step doubling (see
-/// `adaptive::doubling`).
+/// `adaptive::doubling`); `rodas5p` and `radau5` run with their own error estimates
+/// ([`solve_embedded`]).
 pub fn solve_implicit_adaptive<S: System + ?Sized>(
     sys: &S,
     method: Method,
@@ -165,6 +182,9 @@ pub fn solve_implicit_adaptive<S: System + ?Sized>(
     t_end: f64,
     opts: Adaptive,
 ) -> Solution {
+    if method.is_stiff_solver() {
+        return solve_embedded(sys, method, t0, x0, t_end, opts);
+    }
     let mut sol = Solution::start(x0.len(), t0, x0);
     if !method.is_implicit() {
         sol.outcome = Outcome::Failed {

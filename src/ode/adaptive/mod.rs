@@ -9,6 +9,7 @@
 
 mod doubling;
 mod drivers;
+mod implicit_trials;
 mod pair_stepper;
 
 pub use drivers::{
@@ -18,9 +19,13 @@ pub use drivers::{
 
 use super::pairs::Controller;
 use super::solve::Outcome;
+use super::stiff::ImplicitWork;
 
 /// Default step budget of the adaptive solvers (accepted plus rejected steps).
 pub const MAX_ADAPTIVE_STEPS: usize = 10_000_000;
+
+/// Accepted steps between two stiffness tests while none is positive (Hairer's NSTIFF).
+const STIFF_TEST_EVERY: usize = 1000;
 
 /// Tolerances and limits of an adaptive run.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -35,6 +40,9 @@ pub struct Adaptive {
     /// record every accepted step (else only the final state); the `[f64; N]` drivers never
     /// record and call back instead
     pub record: bool,
+    /// stop with `Outcome::Stiff` when an explicit pair's stiffness test fires (Hairer's, in
+    /// DOPRI5 and DOP853: h·|λ| beyond the stability boundary 15 tests running)
+    pub stop_if_stiff: bool,
 }
 
 impl Default for Adaptive {
@@ -46,6 +54,7 @@ impl Default for Adaptive {
             max_steps: MAX_ADAPTIVE_STEPS,
             bound: 1e12,
             record: true,
+            stop_if_stiff: false,
         }
     }
 }
@@ -75,6 +84,82 @@ pub(crate) trait Trial {
     fn f_evals(&self) -> u64;
     /// What repeated non-finite attempts mean, for the failure message.
     const NONFINITE: &'static str;
+    /// Scales the controller's safety factor after an accepted attempt (RADAU5 lowers it when
+    /// Newton needed many iterations).
+    fn safety_scale(&self) -> f64 {
+        1.0
+    }
+    /// After a rejected attempt: the step-size factor the trial itself needs (Newton failed
+    /// to converge), in place of the controller's.
+    fn rejection_factor(&self) -> Option<f64> {
+        None
+    }
+    /// After a rejected attempt: why the run cannot go on (a Newton matrix singular however
+    /// the step is cut).
+    fn fatal(&self) -> Option<String> {
+        None
+    }
+    /// After an accepted step of h: h·|λ| of the dominant eigenvalue over the method's
+    /// stability boundary along the negative axis (> 1: the step is limited by stability),
+    /// for the explicit pairs that have Hairer's test.
+    fn stiffness(&self, _h: f64) -> Option<f64> {
+        None
+    }
+    /// Jacobians and LU decompositions (implicit methods).
+    fn work(&self) -> ImplicitWork {
+        ImplicitWork::default()
+    }
+}
+
+/// Hairer's HINIT (Solving ODEs I, II.4), first half: h₀ from |x|/|f(x)| (f0 = f(t, x)),
+/// and d₁ = ‖f0‖ for the second half, [`initial_step_finish`], which needs f at
+/// x + h₀·f0.
+pub(crate) fn initial_step_start(x: &[f64], f0: &[f64], span: f64, tol: Tol) -> (f64, f64) {
+    let n = x.len() as f64;
+    let sc = |i: usize| tol.atol + tol.rtol * x[i].abs();
+    let (mut d0, mut d1) = (0.0, 0.0);
+    for i in 0..x.len() {
+        d0 += (x[i] / sc(i)).powi(2);
+        d1 += (f0[i] / sc(i)).powi(2);
+    }
+    let (d0, d1) = ((d0 / n).sqrt(), (d1 / n).sqrt());
+    let h0 = if d0 < 1e-5 || d1 < 1e-5 {
+        1e-6
+    } else {
+        0.01 * d0 / d1
+    }
+    .min(span);
+    (h0, d1)
+}
+
+/// HINIT, second half: with f1 = f(t + h₀, x + h₀·f0), the second derivative's size d₂ and
+/// h = min(100 h₀, (0.01 / max(d₁, d₂))^(1/p)), for an error estimate of order p.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn initial_step_finish(
+    x: &[f64],
+    f0: &[f64],
+    f1: &[f64],
+    h0: f64,
+    d1: f64,
+    order: u32,
+    span: f64,
+    tol: Tol,
+) -> f64 {
+    let n = x.len() as f64;
+    let mut d2 = 0.0;
+    for i in 0..x.len() {
+        let sc = tol.atol + tol.rtol * x[i].abs();
+        d2 += ((f1[i] - f0[i]) / sc).powi(2);
+    }
+    let d2 = (d2 / n).sqrt() / h0;
+    let m = d1.max(d2);
+    let h1 = if m <= 1e-15 {
+        (h0 * 1e-3).max(1e-6)
+    } else {
+        (0.01 / m).powf(1.0 / order as f64)
+    };
+    let h = (100.0 * h0).min(h1).min(span);
+    if h.is_finite() && h > 0.0 { h } else { span }
 }
 
 /// How a run of [`drive`] went.
@@ -171,6 +256,10 @@ pub(crate) fn drive<T: Trial>(
     let mut ln_err_prev = ln_floor;
     let mut after_reject = false;
     let mut nonfinite = false;
+    // Gustafsson's predictive controller: the last accepted step and its error
+    let (mut h_acc, mut err_acc) = (f64::NAN, 0.0f64);
+    // Hairer's stiffness test: positive tests running, negative ones since the last positive
+    let (mut stiff_tests, mut calm_tests) = (0u32, 0u32);
     while t < t_end {
         if run.steps + run.rejected >= opts.max_steps {
             run.outcome = Outcome::Failed {
@@ -212,19 +301,60 @@ pub(crate) fn drive<T: Trial>(
             let fac_max = if after_reject { 1.0 } else { ctrl.fac_max };
             // safety · err^(−α) · err_prev^β (err = 0 gives +∞, clamped to fac_max)
             let ln_err = err.ln();
-            let fac = ctrl.safety * (ctrl.beta * ln_err_prev - ctrl.alpha * ln_err).exp();
-            h = h_try * fac.clamp(ctrl.fac_min, fac_max);
+            let safety = ctrl.safety * trial.safety_scale();
+            let mut fac = safety * (ctrl.beta * ln_err_prev - ctrl.alpha * ln_err).exp();
+            if ctrl.predictive {
+                // Gustafsson (1994), as RADAU5: safety · (h/h_acc) · (err_acc / err²)^α
+                if h_acc.is_finite() {
+                    let ln_gus = (h_try / h_acc).ln() + ctrl.alpha * (err_acc.ln() - 2.0 * ln_err);
+                    fac = fac.min(ctrl.safety * ln_gus.exp());
+                }
+                h_acc = h_try;
+                err_acc = err.max(1e-2);
+            }
+            let mut fac = fac.clamp(ctrl.fac_min, fac_max);
+            // a step kept unchanged keeps an implicit method's factorisations
+            if (1.0..=ctrl.hold).contains(&fac) {
+                fac = 1.0;
+            }
+            h = h_try * fac;
             ln_err_prev = ln_err.max(ln_floor);
             after_reject = false;
             nonfinite = false;
+            if opts.stop_if_stiff && (run.steps % STIFF_TEST_EVERY == 0 || stiff_tests > 0) {
+                match trial.stiffness(h_try) {
+                    Some(r) if r > 1.0 => {
+                        calm_tests = 0;
+                        stiff_tests += 1;
+                        if stiff_tests == 15 {
+                            run.outcome = Outcome::Stiff { t };
+                            return run;
+                        }
+                    }
+                    Some(_) => {
+                        calm_tests += 1;
+                        if calm_tests == 6 {
+                            stiff_tests = 0;
+                        }
+                    }
+                    None => {}
+                }
+            }
         } else {
             run.rejected += 1;
             after_reject = true;
             nonfinite = !err.is_finite();
-            let fac = if nonfinite {
+            if let Some(reason) = trial.fatal() {
+                run.outcome = Outcome::Failed { t, reason };
+                return run;
+            }
+            let fac = if let Some(f) = trial.rejection_factor() {
+                f
+            } else if nonfinite {
                 ctrl.fac_min
             } else {
-                (ctrl.safety * err.powf(-ctrl.alpha)).clamp(ctrl.fac_min, 1.0)
+                let safety = ctrl.safety * trial.safety_scale();
+                (safety * err.powf(-ctrl.alpha)).clamp(ctrl.fac_min, 1.0)
             };
             h = h_try * fac;
         }

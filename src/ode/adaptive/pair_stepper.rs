@@ -6,7 +6,7 @@
 
 use std::marker::PhantomData;
 
-use super::{Tol, Trial};
+use super::{Tol, Trial, initial_step_finish, initial_step_start};
 use crate::ode::System;
 use crate::ode::fixed::FixedSystem;
 use crate::ode::pairs::Pair;
@@ -162,47 +162,22 @@ where
         self.evals += 1;
     }
 
-    /// Hairer's HINIT (Solving ODEs I, II.4): h₀ from |x|/|f|, one Euler step to estimate the
-    /// second derivative, h = (0.01 / max(|f|, |f'|))^(1/p). One f-evaluation (k₁ is there).
+    /// Hairer's HINIT (`adaptive::initial_step_start`): one f-evaluation (k₁ is there).
     fn initial_step(&mut self, t: f64, t_end: f64, tol: Tol) -> f64 {
         let span = t_end - t;
-        let x = self.x.as_ref();
-        let n = x.len() as f64;
-        let f0 = self.k[0].as_ref();
-        let sc = |i: usize| tol.atol + tol.rtol * x[i].abs();
-        let (mut d0, mut d1) = (0.0, 0.0);
-        for i in 0..x.len() {
-            d0 += (x[i] / sc(i)).powi(2);
-            d1 += (f0[i] / sc(i)).powi(2);
-        }
-        let (d0, d1) = ((d0 / n).sqrt(), (d1 / n).sqrt());
-        let h0 = if d0 < 1e-5 || d1 < 1e-5 {
-            1e-6
-        } else {
-            0.01 * d0 / d1
-        }
-        .min(span);
-        let xs = self.xs.as_mut();
-        for i in 0..xs.len() {
-            xs[i] = x[i] + h0 * f0[i];
+        let (h0, d1) = initial_step_start(self.x.as_ref(), self.k[0].as_ref(), span, tol);
+        {
+            let (x, f0) = (self.x.as_ref(), self.k[0].as_ref());
+            let xs = self.xs.as_mut();
+            for i in 0..xs.len() {
+                xs[i] = x[i] + h0 * f0[i];
+            }
         }
         let (first, rest) = self.k.split_at_mut(1);
         self.f.eval(t + h0, &self.xs, &mut rest[0]);
         self.evals += 1;
         let (f0, f1) = (first[0].as_ref(), rest[0].as_ref());
-        let mut d2 = 0.0;
-        for i in 0..x.len() {
-            d2 += ((f1[i] - f0[i]) / sc(i)).powi(2);
-        }
-        let d2 = (d2 / n).sqrt() / h0;
-        let m = d1.max(d2);
-        let h1 = if m <= 1e-15 {
-            (h0 * 1e-3).max(1e-6)
-        } else {
-            (0.01 / m).powf(1.0 / P::COEF.order as f64)
-        };
-        let h = (100.0 * h0).min(h1).min(span);
-        if h.is_finite() && h > 0.0 { h } else { span }
+        initial_step_finish(self.x.as_ref(), f0, f1, h0, d1, P::COEF.order, span, tol)
     }
 
     #[inline]
@@ -252,5 +227,30 @@ where
 
     fn f_evals(&self) -> u64 {
         self.evals
+    }
+
+    /// Hairer's test (dopri5.f, dop853.f): after the step, h·|λ| ≈ h·‖f(x_new) − f(y)‖ / ‖x_new
+    /// − y‖, y the argument of the last stage before the new state that is also at t + h.
+    fn stiffness(&self, h: f64) -> Option<f64> {
+        let limit = P::STIFF_LIMIT?;
+        let coef = &P::COEF;
+        // after accept: k[0] = f(x_new); that stage's f (an FSAL pair swapped its last into
+        // k[0] and keeps the one before) and argument (xs) are untouched
+        let idx = if coef.fsal { S - 2 } else { S - 1 };
+        if coef.c[idx] != 1.0 {
+            return None;
+        }
+        let (x, xs, f_new, f_stage) = (
+            self.x.as_ref(),
+            self.xs.as_ref(),
+            self.k[0].as_ref(),
+            self.k[idx].as_ref(),
+        );
+        let (mut num, mut den) = (0.0, 0.0);
+        for m in 0..x.len() {
+            num += (f_new[m] - f_stage[m]).powi(2);
+            den += (x[m] - xs[m]).powi(2);
+        }
+        (den > 0.0).then(|| h.abs() * (num / den).sqrt() / limit)
     }
 }

@@ -1,9 +1,12 @@
 //! Right-hand sides written as text: parsed once ([`parse`]), compiled to a flat register
 //! program ([`program`]) and evaluated without allocation.
 
+pub mod derive;
+pub mod greek;
 pub mod parse;
 pub mod program;
 
+pub use derive::derivatives;
 pub use parse::{ExprError, Node, Scope, is_reserved, parse};
 pub use program::Program;
 
@@ -87,6 +90,11 @@ mod tests {
             ("sin + 1", 0, "sin", "needs arguments"),
             ("(x))", 3, ")", "after a complete"),
             ("* x", 0, "*", "expected a number"),
+            ("x*(", 3, "end of expression", "expected `)` to close the `(` at column 3"),
+            ("sin(", 4, "end of expression", "expected `)` to close the `(` at column 4"),
+            ("(x + (v)", 8, "end of expression", "expected `)` to close the `(` at column 1"),
+            ("sinn(x)", 0, "sinn", "unknown function `sinn`; did you mean `sin`?"),
+            ("vv + x", 0, "vv", "unknown name `vv`; did you mean `v`?"),
         ];
         for (src, offset, token, msg) in cases {
             let (i, e) = compile(&[src.to_string()], &vars, &[]).unwrap_err();
@@ -94,5 +102,24 @@ mod tests {
             assert_eq!((e.offset, e.token.as_str()), (offset, token), "{src}: {e}");
             assert!(e.message.contains(msg), "{src}: {e}");
         }
+    }
+
+    #[test]
+    fn greek_names_are_typeable_in_ascii_and_the_other_way_round() {
+        let vars = s(&["x", "v"]);
+        let greek = [("ζ".to_string(), 0.5), ("ω".to_string(), 2.0)];
+        let ascii = [("zeta".to_string(), 0.5), ("omega".to_string(), 2.0)];
+        let typed = "-2*zeta*omega*v - omega^2*x";
+        let written = "-2*ζ*ω*v - ω^2*x";
+        let y = [1.0, 0.5];
+        let mut out = [0.0];
+        for (exprs, params) in [(typed, &greek), (written, &ascii), (written, &greek)] {
+            let p = compile(&s(&[exprs]), &vars, params).unwrap();
+            p.eval(0.0, &y, &mut out);
+            assert_eq!(out[0], -2.0 * 0.5 * 2.0 * 0.5 - 4.0 * 1.0, "{exprs}");
+        }
+        // a Greek name that is not in scope: a "did you mean" among those that are
+        let (_, e) = compile(&s(&["beta*x"]), &vars, &ascii).unwrap_err();
+        assert!(e.message.contains("did you mean `zeta`?"), "{e}");
     }
 }

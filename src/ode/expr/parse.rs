@@ -152,7 +152,21 @@ pub struct Scope<'a> {
 }
 
 impl Scope<'_> {
+    /// A name as written, else its other Greek spelling (`zeta` for a parameter `ζ`).
     fn lookup(&self, name: &str) -> Option<Node> {
+        self.lookup_exact(name)
+            .or_else(|| super::greek::alias(name).and_then(|a| self.lookup_exact(&a)))
+    }
+
+    /// "did you mean" among the names in scope, when one is close to `name`.
+    fn suggest(&self, name: &str) -> Option<String> {
+        let names = (self.inputs.iter().map(String::as_str))
+            .chain(self.params.iter().map(|(n, _)| n.as_str()))
+            .chain(["pi"]);
+        crate::diag::did_you_mean(name, names)
+    }
+
+    fn lookup_exact(&self, name: &str) -> Option<Node> {
         if let Some(i) = self.inputs.iter().position(|n| n == name) {
             return Some(Node::Input(i));
         }
@@ -205,6 +219,8 @@ struct Parser<'a> {
     toks: Vec<Token>,
     pos: usize,
     scope: &'a Scope<'a>,
+    /// Offsets of the `(` not closed yet, innermost last.
+    open: Vec<usize>,
 }
 
 /// Parses one expression completely.
@@ -213,6 +229,7 @@ pub fn parse(src: &str, scope: &Scope<'_>) -> Result<Node, ExprError> {
         toks: lex(src)?,
         pos: 0,
         scope,
+        open: Vec::new(),
     };
     let node = p.expr()?;
     if p.peek().tok != Tok::End {
@@ -242,6 +259,15 @@ impl Parser<'_> {
         } else {
             false
         }
+    }
+
+    /// The `)` of the innermost open group; missing, the error names the `(` it would close.
+    fn close_group(&mut self) -> Result<(), ExprError> {
+        let at = self.open.pop().unwrap_or(0);
+        if self.eat(')') {
+            return Ok(());
+        }
+        Err(self.error(&format!("expected `)` to close the `(` at column {}", at + 1)))
     }
 
     fn expect(&mut self, c: char) -> Result<(), ExprError> {
@@ -309,9 +335,10 @@ impl Parser<'_> {
                 Ok(Node::Num(v))
             }
             Tok::Sym('(') => {
+                self.open.push(self.peek().offset);
                 self.pos += 1;
                 let e = self.expr()?;
-                self.expect(')')?;
+                self.close_group()?;
                 Ok(e)
             }
             Tok::Name(name) => {
@@ -323,6 +350,8 @@ impl Parser<'_> {
                 self.scope.lookup(&name).ok_or_else(|| {
                     let hint = if fn1_by_name(&name).is_some() || fn2_by_name(&name).is_some() {
                         format!("`{name}` is a function and needs arguments in parentheses")
+                    } else if let Some(hint) = self.scope.suggest(&name) {
+                        format!("unknown name `{name}`; {hint}")
                     } else {
                         format!("unknown name `{name}`; known: {}", self.scope.known_names())
                     };
@@ -333,7 +362,14 @@ impl Parser<'_> {
                     }
                 })
             }
-            Tok::End => Err(self.error("expression ended early")),
+            Tok::End => Err(match self.open.last() {
+                // `x*(` or `sin(`: the group is what is unfinished
+                Some(&at) => self.error(&format!(
+                    "expected `)` to close the `(` at column {} (and an expression inside it)",
+                    at + 1
+                )),
+                None => self.error("expression ended early"),
+            }),
             Tok::Sym(_) => Err(self.error("expected a number, a name or `(`")),
         }
     }
@@ -350,16 +386,21 @@ impl Parser<'_> {
         } else if fn2_by_name(name).is_some() {
             2
         } else {
-            return Err(name_err(format!(
-                "unknown function `{name}`; known: sin cos tan exp ln sqrt abs atan2 min max pow"
-            )));
+            const KNOWN: [&str; 11] = [
+                "sin", "cos", "tan", "exp", "ln", "sqrt", "abs", "atan2", "min", "max", "pow",
+            ];
+            return Err(name_err(match crate::diag::did_you_mean(name, KNOWN) {
+                Some(hint) => format!("unknown function `{name}`; {hint}"),
+                None => format!("unknown function `{name}`; known: {}", KNOWN.join(" ")),
+            }));
         };
+        self.open.push(self.peek().offset);
         self.expect('(')?;
         let mut args = vec![self.expr()?];
         while self.eat(',') {
             args.push(self.expr()?);
         }
-        self.expect(')')?;
+        self.close_group()?;
         if args.len() != arity {
             return Err(name_err(format!(
                 "`{name}` takes {arity} argument(s), got {}",

@@ -9,7 +9,7 @@ use std::collections::HashMap;
 use super::parse::{Fn1, Fn2, Node};
 
 #[derive(Debug, Clone, Copy, PartialEq)]
-enum Instr {
+pub(super) enum Instr {
     Const(f64),
     Add(u32, u32),
     Sub(u32, u32),
@@ -28,23 +28,89 @@ enum Instr {
     Ln(u32),
     Sqrt(u32),
     Abs(u32),
+    /// sign of a (−1, 0, 1): the derivative of |a|
+    Sign(u32),
+    /// `if a ≤ b { x } else { y }`: the derivatives of min and max
+    PickLe(u32, u32, u32, u32),
 }
 
-#[derive(Hash, PartialEq, Eq)]
-enum Key {
-    Const(u64),
-    Op1(Fn1, u32),
-    Op2(Fn2, u32, u32),
-    PowI(u32, i32),
+impl Instr {
+    /// A hashable identity: equal keys compute equal values (hash-consing).
+    fn key(&self) -> (u8, u64, u64, u64, u64) {
+        use Instr::*;
+        let u = |s: u32| s as u64;
+        match *self {
+            Const(c) => (0, c.to_bits(), 0, 0, 0),
+            Add(a, b) => (1, u(a), u(b), 0, 0),
+            Sub(a, b) => (2, u(a), u(b), 0, 0),
+            Mul(a, b) => (3, u(a), u(b), 0, 0),
+            Div(a, b) => (4, u(a), u(b), 0, 0),
+            Neg(a) => (5, u(a), 0, 0, 0),
+            Pow(a, b) => (6, u(a), u(b), 0, 0),
+            PowI(a, e) => (7, u(a), e as i64 as u64, 0, 0),
+            Atan2(a, b) => (8, u(a), u(b), 0, 0),
+            Min(a, b) => (9, u(a), u(b), 0, 0),
+            Max(a, b) => (10, u(a), u(b), 0, 0),
+            Sin(a) => (11, u(a), 0, 0, 0),
+            Cos(a) => (12, u(a), 0, 0, 0),
+            Tan(a) => (13, u(a), 0, 0, 0),
+            Exp(a) => (14, u(a), 0, 0, 0),
+            Ln(a) => (15, u(a), 0, 0, 0),
+            Sqrt(a) => (16, u(a), 0, 0, 0),
+            Abs(a) => (17, u(a), 0, 0, 0),
+            Sign(a) => (18, u(a), 0, 0, 0),
+            PickLe(a, b, x, y) => (19, u(a), u(b), u(x), u(y)),
+        }
+    }
+
+    /// The slots this instruction reads.
+    pub(super) fn operands(&self) -> ([u32; 4], usize) {
+        use Instr::*;
+        match *self {
+            Const(_) => ([0; 4], 0),
+            Neg(a) | PowI(a, _) | Sin(a) | Cos(a) | Tan(a) | Exp(a) | Ln(a) | Sqrt(a)
+            | Abs(a) | Sign(a) => ([a, 0, 0, 0], 1),
+            Add(a, b) | Sub(a, b) | Mul(a, b) | Div(a, b) | Pow(a, b) | Atan2(a, b)
+            | Min(a, b) | Max(a, b) => ([a, b, 0, 0], 2),
+            PickLe(a, b, x, y) => ([a, b, x, y], 4),
+        }
+    }
+
+    /// The same instruction reading `map(slot)` for each operand.
+    pub(super) fn remap(&self, map: impl Fn(u32) -> u32) -> Instr {
+        use Instr::*;
+        match *self {
+            Const(c) => Const(c),
+            Add(a, b) => Add(map(a), map(b)),
+            Sub(a, b) => Sub(map(a), map(b)),
+            Mul(a, b) => Mul(map(a), map(b)),
+            Div(a, b) => Div(map(a), map(b)),
+            Neg(a) => Neg(map(a)),
+            Pow(a, b) => Pow(map(a), map(b)),
+            PowI(a, e) => PowI(map(a), e),
+            Atan2(a, b) => Atan2(map(a), map(b)),
+            Min(a, b) => Min(map(a), map(b)),
+            Max(a, b) => Max(map(a), map(b)),
+            Sin(a) => Sin(map(a)),
+            Cos(a) => Cos(map(a)),
+            Tan(a) => Tan(map(a)),
+            Exp(a) => Exp(map(a)),
+            Ln(a) => Ln(map(a)),
+            Sqrt(a) => Sqrt(map(a)),
+            Abs(a) => Abs(map(a)),
+            Sign(a) => Sign(map(a)),
+            PickLe(a, b, x, y) => PickLe(map(a), map(b), map(x), map(y)),
+        }
+    }
 }
 
 /// A compiled set of expressions over the inputs `[t, x_0, …, x_{n−1}]`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Program {
-    n_inputs: usize,
-    code: Vec<Instr>,
+    pub(super) n_inputs: usize,
+    pub(super) code: Vec<Instr>,
     /// slot of each output
-    outputs: Vec<u32>,
+    pub(super) outputs: Vec<u32>,
 }
 
 /// Applies a one-argument function exactly as the evaluator does (used for folding too).
@@ -74,19 +140,31 @@ fn apply2(f: Fn2, a: f64, b: f64) -> f64 {
     }
 }
 
-struct Builder {
-    n_inputs: usize,
-    code: Vec<Instr>,
-    seen: HashMap<Key, u32>,
+pub(super) struct Builder {
+    pub n_inputs: usize,
+    pub code: Vec<Instr>,
+    seen: HashMap<(u8, u64, u64, u64, u64), u32>,
 }
 
-enum Val {
+/// A value while building: a number known at compile time, or a slot.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Val {
     Num(f64),
     Slot(u32),
 }
 
 impl Builder {
-    fn emit(&mut self, key: Key, instr: Instr) -> u32 {
+    pub fn new(n_inputs: usize) -> Self {
+        Self {
+            n_inputs,
+            code: Vec::new(),
+            seen: HashMap::new(),
+        }
+    }
+
+    /// The slot of `instr`, shared with an identical earlier one.
+    pub fn emit(&mut self, instr: Instr) -> u32 {
+        let key = instr.key();
         if let Some(&s) = self.seen.get(&key) {
             return s;
         }
@@ -96,14 +174,14 @@ impl Builder {
         slot
     }
 
-    fn slot(&mut self, v: Val) -> u32 {
+    pub fn slot(&mut self, v: Val) -> u32 {
         match v {
             Val::Slot(s) => s,
-            Val::Num(c) => self.emit(Key::Const(c.to_bits()), Instr::Const(c)),
+            Val::Num(c) => self.emit(Instr::Const(c)),
         }
     }
 
-    fn node(&mut self, node: &Node) -> Val {
+    pub fn node(&mut self, node: &Node) -> Val {
         match node {
             Node::Num(v) => Val::Num(*v),
             Node::Input(i) => Val::Slot(*i as u32),
@@ -120,7 +198,7 @@ impl Builder {
                         Fn1::Sqrt => Instr::Sqrt(s),
                         Fn1::Abs => Instr::Abs(s),
                     };
-                    Val::Slot(self.emit(Key::Op1(*f, s), instr))
+                    Val::Slot(self.emit(instr))
                 }
             },
             Node::Call2(f, a, b) => {
@@ -136,8 +214,8 @@ impl Builder {
                     let e = *e as i32;
                     return Val::Slot(match e {
                         1 => *s,
-                        2 => self.emit(Key::Op2(Fn2::Mul, *s, *s), Instr::Mul(*s, *s)),
-                        _ => self.emit(Key::PowI(*s, e), Instr::PowI(*s, e)),
+                        2 => self.emit(Instr::Mul(*s, *s)),
+                        _ => self.emit(Instr::PowI(*s, e)),
                     });
                 }
                 let (a, b) = (self.slot(a), self.slot(b));
@@ -151,7 +229,7 @@ impl Builder {
                     Fn2::Min => Instr::Min(a, b),
                     Fn2::Max => Instr::Max(a, b),
                 };
-                Val::Slot(self.emit(Key::Op2(*f, a, b), instr))
+                Val::Slot(self.emit(instr))
             }
         }
     }
@@ -165,11 +243,7 @@ thread_local! {
 impl Program {
     /// Compiles expressions over `n_inputs` inputs (`Node::Input(i)`, i < n_inputs).
     pub fn compile(n_inputs: usize, exprs: &[Node]) -> Self {
-        let mut b = Builder {
-            n_inputs,
-            code: Vec::new(),
-            seen: HashMap::new(),
-        };
+        let mut b = Builder::new(n_inputs);
         let outputs = exprs
             .iter()
             .map(|e| {
@@ -182,6 +256,44 @@ impl Program {
             code: b.code,
             outputs,
         }
+    }
+
+    /// The program computing `outputs` from `code`, keeping only the instructions they need.
+    pub(super) fn pruned(n_inputs: usize, code: Vec<Instr>, outputs: Vec<u32>) -> Self {
+        let mut live = vec![false; n_inputs + code.len()];
+        for &o in &outputs {
+            live[o as usize] = true;
+        }
+        for k in (0..code.len()).rev() {
+            if live[n_inputs + k] {
+                let (ops, m) = code[k].operands();
+                for &s in &ops[..m] {
+                    live[s as usize] = true;
+                }
+            }
+        }
+        let mut new_slot: Vec<u32> = (0..n_inputs as u32).collect();
+        new_slot.resize(n_inputs + code.len(), 0);
+        let mut kept = Vec::new();
+        for (k, ins) in code.iter().enumerate() {
+            if live[n_inputs + k] {
+                new_slot[n_inputs + k] = (n_inputs + kept.len()) as u32;
+                kept.push(ins.remap(|s| new_slot[s as usize]));
+            }
+        }
+        Program {
+            n_inputs,
+            code: kept,
+            outputs: outputs.iter().map(|&o| new_slot[o as usize]).collect(),
+        }
+    }
+
+    /// Whether every output is the constant zero (e.g. ∂f/∂t of an autonomous system).
+    pub fn is_zero(&self) -> bool {
+        self.outputs.iter().all(|&o| {
+            (o as usize) >= self.n_inputs
+                && self.code[o as usize - self.n_inputs] == Instr::Const(0.0)
+        })
     }
 
     pub fn outputs(&self) -> usize {
@@ -231,6 +343,23 @@ impl Program {
                 Instr::Ln(a) => g(a).ln(),
                 Instr::Sqrt(a) => g(a).sqrt(),
                 Instr::Abs(a) => g(a).abs(),
+                Instr::Sign(a) => {
+                    let v = g(a);
+                    if v > 0.0 {
+                        1.0
+                    } else if v < 0.0 {
+                        -1.0
+                    } else {
+                        v
+                    }
+                }
+                Instr::PickLe(a, b, x, y) => {
+                    if g(a) <= g(b) {
+                        g(x)
+                    } else {
+                        g(y)
+                    }
+                }
             };
             r[i] = v;
         }

@@ -99,6 +99,12 @@ pub struct Controller {
     pub fac_max: f64,
     pub alpha: f64,
     pub beta: f64,
+    /// also apply Gustafsson's predictive controller and keep the smaller step (RADAU5,
+    /// RODAS): it anticipates the error's trend where stiff components switch on and off
+    pub predictive: bool,
+    /// keep h when the new one would be 1 … `hold` times it (1: never), so an implicit method
+    /// keeps its LU factors (RADAU5: 1.2)
+    pub hold: f64,
 }
 
 impl Controller {
@@ -111,6 +117,20 @@ impl Controller {
             fac_max: 10.0,
             alpha: 1.0 / p as f64 - 0.75 * beta,
             beta,
+            predictive: false,
+            hold: 1.0,
+        }
+    }
+
+    /// The stiff solvers' controller, as Hairer's RADAU5 and RODAS: err^(−1/q) for an
+    /// error estimate of order q, Gustafsson's predictive term, step ratio in
+    /// [0.2, `fac_max`], steps kept within `hold`.
+    pub const fn predictive(q: u32, fac_max: f64, hold: f64) -> Self {
+        Self {
+            fac_max,
+            predictive: true,
+            hold,
+            ..Self::pi(q, 0.0)
         }
     }
 }
@@ -130,23 +150,28 @@ impl Controller {
 pub trait Pair<const S: usize>: Copy {
     const COEF: PairCoefficients<S>;
     const CONTROL: Controller;
+    /// Hairer's stiffness test: the stability boundary on the negative real axis beyond
+    /// which h·|λ| (estimated from the two stages at c = 1) means the step is limited by
+    /// stability (DOPRI5: 3.25, DOP853: 6.1); `None`: no test.
+    const STIFF_LIMIT: Option<f64> = None;
 }
 
 macro_rules! pair {
-    ($(#[$doc:meta])* $ty:ident, $s:literal, $coef:path, $control:expr) => {
+    ($(#[$doc:meta])* $ty:ident, $s:literal, $coef:path, $control:expr $(, stiff = $lim:expr)?) => {
         $(#[$doc])*
         #[derive(Debug, Clone, Copy, Default)]
         pub struct $ty;
         impl Pair<$s> for $ty {
             const COEF: PairCoefficients<$s> = $coef;
             const CONTROL: Controller = $control;
+            $(const STIFF_LIMIT: Option<f64> = Some($lim);)?
         }
     };
 }
 
 pair!(
     /// Dormand–Prince 5(4), Hairer's DOPRI5 controller.
-    Dopri5Pair, 7, dopri5::DOPRI5, Controller::pi(5, 0.04)
+    Dopri5Pair, 7, dopri5::DOPRI5, Controller::pi(5, 0.04), stiff = 3.25
 );
 pair!(
     /// Tsitouras 5(4).
@@ -177,7 +202,8 @@ pair!(
         fac_min: 1.0 / 3.0,
         fac_max: 6.0,
         ..Controller::pi(8, 0.0)
-    }
+    },
+    stiff = 6.1
 );
 
 /// Runs `$body` with `$pair` bound to the pair of an adaptive [`Method`](super::Method) (a

@@ -145,15 +145,12 @@ impl SceneGpu {
             Some(i) => i,
             None => {
                 let started = std::time::Instant::now();
-                let root = scene_path
-                    .parent()
-                    .and_then(Path::parent)
-                    .unwrap_or(Path::new(""));
+                let shader_dir = crate::bundled::shader_folder_for_scene(scene_path)?.dir;
                 let rs = &self.render_state;
                 let renderer = Renderer::new(
                     &rs.device,
                     &rs.queue,
-                    &root.join(crate::render::SHADER_DIR),
+                    &shader_dir,
                     scene,
                     OUTPUT_FORMAT,
                 )
@@ -161,7 +158,6 @@ impl SceneGpu {
                 tracing::debug!("scene renderer for slides made in {:?}", started.elapsed());
                 let watcher = self.watch_files.then(|| {
                     let ctx = self.ctx.clone();
-                    let shader_dir = root.join(crate::render::SHADER_DIR);
                     let scene_dir = scene_path.parent().unwrap_or(Path::new("."));
                     let wake = move || ctx.request_repaint();
                     DirWatcher::new(&[&shader_dir, scene_dir], RELOAD_DEBOUNCE, wake)
