@@ -125,9 +125,6 @@ override SHADOW_PCF_RADIUS: i32 = 1;
 // Directional shadow: percentage-closer filtering (Reeves, Salesin & Cook 1987) over
 // (2r + 1)² comparison taps, each a bilinear 2×2 in hardware.
 fn sun_visibility(world_pos: vec3f, normal: vec3f) -> f32 {
-    if (!on(g.shadows_on)) {
-        return 1.0;
-    }
     // a small normal offset complements the pipeline's slope-scaled depth bias
     let p = g.light_clip_from_world * vec4f(world_pos + normal * 0.02, 1.0);
     let ndc = p.xyz / p.w;
@@ -144,7 +141,7 @@ fn sun_visibility(world_pos: vec3f, normal: vec3f) -> f32 {
         }
     }
     let taps = f32(2 * r + 1);
-    return sum / (taps * taps);
+    return mix(1.0, sum / (taps * taps), f32(g.shadows_on));
 }
 
 // Sunlight reaching a point under water is absorbed along its (unrefracted) path: Beer–Lambert.
@@ -209,11 +206,10 @@ fn water_path(path_m: f32, depth0_m: f32, descent_per_m: f32) -> WaterPath {
 fn opaque_out(color: vec3f, world_pos: vec3f) -> vec4f {
     let dist = distance(world_pos, g.eye_m);
     let eye_depth = g.water_level_m - g.eye_m.y;
-    var c = color;
-    if (eye_depth > 0.0 && g.debug_view != DEBUG_NORMALS) {
-        let dir = (world_pos - g.eye_m) / max(dist, 1e-4);
-        let w = water_path(dist, eye_depth, -dir.y);
-        c = c * w.transmittance + w.inscatter;
-    }
-    return vec4f(c, dist);
+    let dir = (world_pos - g.eye_m) / max(dist, 1e-4);
+    let w = water_path(dist, max(eye_depth, 0.0), -dir.y);
+    // a factor, not an `if` on the uniforms: lavapipe (Mesa 22.3) compiles and keeps a shader
+    // variant per draw for a branch they decide (+1.4 MB a frame here; docs/benchmarks/scene.md)
+    let under = f32(eye_depth > 0.0) * f32(g.debug_view != DEBUG_NORMALS);
+    return vec4f(mix(color, color * w.transmittance + w.inscatter, under), dist);
 }

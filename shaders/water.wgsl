@@ -74,10 +74,17 @@ fn uv_of(p: vec3f) -> vec2f {
 }
 
 fn sky_along(dir: vec3f) -> vec3f {
-    if (on(g.env_map_on)) {
-        return min(textureSampleLevel(env_cube, env_sampler, dir, 0.0).rgb, vec3f(20.0));
-    }
-    return ENV_OFF_RADIANCE;
+    let sky = min(textureSampleLevel(env_cube, env_sampler, dir, 0.0).rgb, vec3f(20.0));
+    return mix(ENV_OFF_RADIANCE, sky, f32(g.env_map_on));
+}
+
+// The normals view: a light tint of the water's own normal over the normals of what lies below
+// (the opaque pass wrote them as colours), so it shows the geometry, not a sheet. Mixed in by a
+// factor at the end, like every toggle here: an `if` on the uniforms makes lavapipe (Mesa 22.3)
+// compile and keep a variant of this shader every frame (+1.5 MB a frame; benchmarks/scene.md).
+fn with_normals_view(color: vec3f, n: vec3f, uv: vec2f) -> vec4f {
+    let normals = mix(below_at(uv).rgb, n * 0.5 + 0.5, 0.3);
+    return vec4f(mix(color, normals, f32(g.debug_view == DEBUG_NORMALS)), 1.0);
 }
 
 // GGX glint of the sun off the surface, its roughness widened by the normal's variance over
@@ -109,12 +116,7 @@ fn fs_main(in: VertexOut) -> @location(0) vec4f {
     if (from_below) {
         n = -n;
     }
-    if (g.debug_view == DEBUG_NORMALS) {
-        // a light tint of the water's own normal over the normals of what lies below (the
-        // opaque pass wrote them as colours), so the view shows the geometry, not a sheet
-        let under = below_at(in.clip.xy / g.viewport_size_px).rgb;
-        return vec4f(mix(under, n * 0.5 + 0.5, select(0.3, 1.0, from_below)), 1.0);
-    }
+    let uv0 = in.clip.xy / g.viewport_size_px;
     let n_dot_v = clamp(dot(n, v), 1e-4, 1.0);
 
     if (from_below) {
@@ -134,20 +136,16 @@ fn fs_main(in: VertexOut) -> @location(0) vec4f {
         }
         let eye_depth = g.water_level_m - g.eye_m.y;
         let w = water_path(water_dist, eye_depth, -(-v).y);
-        return vec4f(surface * w.transmittance + w.inscatter, 1.0);
+        return with_normals_view(surface * w.transmittance + w.inscatter, n, uv0);
     }
 
     // Fresnel weight between reflection and refraction
-    var fresnel = 0.25;
-    if (on(g.fresnel_on)) {
-        fresnel = 0.02 + 0.98 * pow(1.0 - n_dot_v, 5.0);
-    }
+    let fresnel = mix(0.25, 0.02 + 0.98 * pow(1.0 - n_dot_v, 5.0), f32(g.fresnel_on));
     let reflected = sky_along(reflect(-v, n));
 
     // refraction: follow the refracted ray as far as the straight view ray reaches the scene
     // behind, look the scene up there, and fall back to the straight lookup when that picks up
     // something in front of the surface (a floating body)
-    let uv0 = in.clip.xy / g.viewport_size_px;
     let straight = below_at(uv0);
     let t = refract(-v, n, ETA_AIR_OVER_WATER);
     let guess_m = clamp(straight.a - water_dist, 0.0, 20.0);
@@ -160,6 +158,5 @@ fn fs_main(in: VertexOut) -> @location(0) vec4f {
     let refracted = seen.rgb * w.transmittance + w.inscatter;
 
     let glint = sun_glint(n, v, fresnel, variance, in.world_pos);
-    let color = mix(refracted, reflected, fresnel) + glint;
-    return vec4f(color, 1.0);
+    return with_normals_view(mix(refracted, reflected, fresnel) + glint, n, uv0);
 }

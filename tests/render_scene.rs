@@ -152,7 +152,7 @@ fn hot_reload_keeps_the_old_pipeline_on_error_and_swaps_in_the_fix() {
     let good = std::fs::read_to_string(&water).unwrap();
     let bad_line = good
         .lines()
-        .position(|l| l.contains("let color = mix("))
+        .position(|l| l.contains("let fresnel = mix("))
         .unwrap()
         + 1;
     break_line(&water, bad_line);
@@ -199,8 +199,8 @@ fn hot_reload_keeps_the_old_pipeline_on_error_and_swaps_in_the_fix() {
     std::fs::write(
         &water,
         good.replace(
-            "let color = mix(refracted, reflected, fresnel) + glint;",
-            "let color = vec3f(1.0, 0.0, 0.0);",
+            "return with_normals_view(mix(refracted, reflected, fresnel) + glint, n, uv0);",
+            "return vec4f(1.0, 0.0, 0.0, 1.0);",
         ),
     )
     .unwrap();
