@@ -42,19 +42,19 @@ pub fn bundled_shader_dir() -> Result<PathBuf, String> {
     static DIR: std::sync::OnceLock<Result<PathBuf, String>> = std::sync::OnceLock::new();
     DIR.get_or_init(|| {
         let dir = cache_root().join(format!("shaders-{}", env!("CARGO_PKG_VERSION")));
-        write_files(&dir, SHADERS).map_err(|e| {
-            format!(
-                "cannot write the bundled shaders to {}: {e}",
-                dir.display()
-            )
-        })?;
+        write_files(&dir, SHADERS)
+            .map_err(|e| format!("cannot write the bundled shaders to {}: {e}", dir.display()))?;
         Ok(dir)
     })
     .clone()
 }
 
 fn cache_root() -> PathBuf {
-    let from_env = |k: &str| std::env::var_os(k).filter(|v| !v.is_empty()).map(PathBuf::from);
+    let from_env = |k: &str| {
+        std::env::var_os(k)
+            .filter(|v| !v.is_empty())
+            .map(PathBuf::from)
+    };
     from_env("XDG_CACHE_HOME")
         .or_else(|| from_env("HOME").map(|h| h.join(".cache")))
         .unwrap_or_else(std::env::temp_dir)
@@ -117,9 +117,6 @@ mod tests {
         std::fs::create_dir_all(p.path().join("shaders")).unwrap();
         let folder = shader_folder_for_scene(&scene).unwrap();
         assert!(!folder.bundled);
-        assert_eq!(
-            folder.dir,
-            p.path().canonicalize().unwrap().join("shaders")
-        );
+        assert_eq!(folder.dir, p.path().canonicalize().unwrap().join("shaders"));
     }
 }

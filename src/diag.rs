@@ -83,7 +83,10 @@ impl Diagnostic {
 /// "did you mean `SlopeField`?" for the candidate closest to `found` (case aside), when it is
 /// close enough to be a slip: at most a third of its letters differ (at least one may), or
 /// one is the other with a different case or separators.
-pub fn did_you_mean<'a>(found: &str, candidates: impl IntoIterator<Item = &'a str>) -> Option<String> {
+pub fn did_you_mean<'a>(
+    found: &str,
+    candidates: impl IntoIterator<Item = &'a str>,
+) -> Option<String> {
     let fold = |s: &str| {
         s.chars()
             .filter(|c| *c != '_' && *c != '-')
@@ -127,12 +130,24 @@ mod tests {
     fn did_you_mean_picks_the_close_name_and_nothing_far() {
         let widgets = ["SlopeField", "StepConstruction", "Spiral", "Scene"];
         let hint = |f: &str| did_you_mean(f, widgets.iter().copied());
-        assert_eq!(hint("SlopeFeild").as_deref(), Some("did you mean `SlopeField`?"));
-        assert_eq!(hint("slope_field").as_deref(), Some("did you mean `SlopeField`?"));
+        assert_eq!(
+            hint("SlopeFeild").as_deref(),
+            Some("did you mean `SlopeField`?")
+        );
+        assert_eq!(
+            hint("slope_field").as_deref(),
+            Some("did you mean `SlopeField`?")
+        );
         assert_eq!(hint("Spirl").as_deref(), Some("did you mean `Spiral`?"));
         assert_eq!(hint("Histogram"), None);
-        assert_eq!(did_you_mean("x", ["y"]).as_deref(), Some("did you mean `y`?"));
-        assert_eq!(did_you_mean("beta", ["zeta", "omega"]).as_deref(), Some("did you mean `zeta`?"));
+        assert_eq!(
+            did_you_mean("x", ["y"]).as_deref(),
+            Some("did you mean `y`?")
+        );
+        assert_eq!(
+            did_you_mean("beta", ["zeta", "omega"]).as_deref(),
+            Some("did you mean `zeta`?")
+        );
     }
 
     #[test]

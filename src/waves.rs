@@ -269,12 +269,9 @@ impl WaveSpectrum {
         let (lo, hi) = ((0.7 * omega_peak).ln(), (4.0 * omega_peak).ln());
         let band = (hi - lo) / n as f64;
         let gamma = (self.peak_enhancement as f64).max(1.0);
-        let wind = DVec2::new(
-            self.wind_direction[0] as f64,
-            self.wind_direction[1] as f64,
-        )
-        .try_normalize()
-        .unwrap_or(DVec2::X);
+        let wind = DVec2::new(self.wind_direction[0] as f64, self.wind_direction[1] as f64)
+            .try_normalize()
+            .unwrap_or(DVec2::X);
         let mut rng = crate::school::rng::SplitMix64::new(self.seed);
         let mut draws = Vec::with_capacity(n);
         for i in 0..n {

@@ -47,7 +47,13 @@ fn tmp_path(tmp: &tempfile::TempDir) -> PathBuf {
 fn pngs(dir: &Path) -> usize {
     std::fs::read_dir(dir)
         .unwrap()
-        .filter(|e| e.as_ref().unwrap().path().extension().is_some_and(|x| x == "png"))
+        .filter(|e| {
+            e.as_ref()
+                .unwrap()
+                .path()
+                .extension()
+                .is_some_and(|x| x == "png")
+        })
         .count()
 }
 
@@ -66,10 +72,17 @@ fn a_new_project_checks_exports_and_presents_from_any_folder() {
         assert!(project.join(f).is_file(), "{f}");
     }
     let written = std::fs::read_to_string(&deck).unwrap();
-    assert!(written.contains(r#"title: "Damped oscillators and \"chaos\"""#), "{written}");
+    assert!(
+        written.contains(r#"title: "Damped oscillators and \"chaos\"""#),
+        "{written}"
+    );
     // a second `new` never overwrites a lecture
     let again = lectern(tmp.path(), &["new", "chaos"]);
-    assert!(!again.status.success() && text(&again).contains("not empty"), "{}", text(&again));
+    assert!(
+        !again.status.success() && text(&again).contains("not empty"),
+        "{}",
+        text(&again)
+    );
 
     // check from inside slides/, the deck named bare
     let check = lectern(&project.join("slides"), &["check", "talk.ron"]);
@@ -138,7 +151,12 @@ fn a_new_project_checks_exports_and_presents_from_any_folder() {
         h.run_steps(3);
         assert_eq!(h.state().nav().index(), i);
         let state = h.state_mut().slide_state(i).unwrap();
-        assert!(state.problems().is_empty(), "slide {}: {:?}", i + 1, state.problems());
+        assert!(
+            state.problems().is_empty(),
+            "slide {}: {:?}",
+            i + 1,
+            state.problems()
+        );
     }
 }
 
@@ -149,7 +167,8 @@ fn problems_without_path(out: &Output) -> Vec<String> {
         .filter_map(|l| {
             let at = l.find("talk.ron:")?;
             let rest = &l[at + "talk.ron:".len()..];
-            rest.starts_with(|c: char| c.is_ascii_digit()).then(|| rest.to_owned())
+            rest.starts_with(|c: char| c.is_ascii_digit())
+                .then(|| rest.to_owned())
         })
         .collect()
 }
@@ -175,7 +194,11 @@ fn the_deck_path_spelt_four_ways_gives_the_same_check() {
     for (cwd, path) in &runs {
         let out = lectern(cwd, &["check", path]);
         assert!(!out.status.success(), "{path}: {}", text(&out));
-        assert!(!text(&out).contains("outside the project"), "{path}: {}", text(&out));
+        assert!(
+            !text(&out).contains("outside the project"),
+            "{path}: {}",
+            text(&out)
+        );
         let problems = problems_without_path(&out);
         assert_eq!(problems.len(), 1, "{path}: {}", text(&out));
         assert!(problems[0].contains("figures/missing.png"), "{problems:?}");
@@ -227,7 +250,14 @@ fn one_unparsable_slide_leaves_the_others_presenting_and_exporting() {
 
     let out_dir = project.join("export");
     let args = |keep: bool| {
-        let mut v = vec!["export", "slides/talk.ron", "--out", "export", "--size", "640x360"];
+        let mut v = vec![
+            "export",
+            "slides/talk.ron",
+            "--out",
+            "export",
+            "--size",
+            "640x360",
+        ];
         if keep {
             v.push("--keep-going");
         }
@@ -265,7 +295,11 @@ fn one_unparsable_slide_leaves_the_others_presenting_and_exporting() {
     );
     h.key_press(egui::Key::ArrowRight);
     h.run_steps(2);
-    assert_eq!(h.state().nav().index(), 5, "paging goes on past the error slide");
+    assert_eq!(
+        h.state().nav().index(),
+        5,
+        "paging goes on past the error slide"
+    );
 }
 
 #[test]
@@ -290,7 +324,10 @@ fn the_presenter_overlay_shows_every_control_of_the_live_slide_at_720_px() {
         let rects: Vec<egui::Rect> = h.query_all_by_label(name).map(|n| n.rect()).collect();
         assert!(!rects.is_empty(), "no {name} slider");
         for r in rects {
-            assert!(r.bottom() <= 720.0 && r.top() >= 0.0, "{name} at {r:?}: below the window");
+            assert!(
+                r.bottom() <= 720.0 && r.top() >= 0.0,
+                "{name} at {r:?}: below the window"
+            );
         }
     }
     // the equation's fields too

@@ -23,7 +23,11 @@ struct Exported {
 fn export(ids: &[&str]) -> Exported {
     let mut deck = lecture();
     deck.slides.retain(|s| ids.contains(&s.key()));
-    assert_eq!(deck.slides.len(), ids.len(), "every id is a slide of the lecture");
+    assert_eq!(
+        deck.slides.len(),
+        ids.len(),
+        "every id is a slide of the lecture"
+    );
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("data");
     let files = lectern::cli::export_data::write_data(&deck, &out, &Default::default()).unwrap();
@@ -64,7 +68,12 @@ impl Exported {
         self.readouts[slide]
             .iter()
             .find(|r| r.0 == name && r.1 == series)
-            .unwrap_or_else(|| panic!("{slide}: no readout {name},{series}: {:?}", self.readouts[slide]))
+            .unwrap_or_else(|| {
+                panic!(
+                    "{slide}: no readout {name},{series}: {:?}",
+                    self.readouts[slide]
+                )
+            })
             .2
     }
 
@@ -119,14 +128,28 @@ fn the_stability_regions_are_whole_and_inside_the_plot() {
             .fold(f64::MAX, f64::min)
     };
     let typo = leftmost("rk4-typo");
-    assert!((typo + 4.0).abs() <= 0.02, "the typo's region reaches {typo}, not −4.0");
+    assert!(
+        (typo + 4.0).abs() <= 0.02,
+        "the typo's region reaches {typo}, not −4.0"
+    );
     let rk4 = leftmost("rk4");
-    assert!((rk4 + 2.785).abs() <= 0.01, "RK4's region reaches {rk4}, not −2.785");
+    assert!(
+        (rk4 + 2.785).abs() <= 0.01,
+        "RK4's region reaches {rk4}, not −2.785"
+    );
     let im = crossings(&e.rows("stability", "rk4"), 1);
-    let (lo, hi) = im.iter().fold((f64::MAX, f64::MIN), |(a, b), &v| (a.min(v), b.max(v)));
-    assert!((hi - 2.83).abs() <= 0.01 && (lo + 2.83).abs() <= 0.01, "RK4 on the imaginary axis: {lo} … {hi}");
+    let (lo, hi) = im
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(a, b), &v| (a.min(v), b.max(v)));
+    assert!(
+        (hi - 2.83).abs() <= 0.01 && (lo + 2.83).abs() <= 0.01,
+        "RK4 on the imaginary axis: {lo} … {hi}"
+    );
     // the plot is fitted to the regions, not a fixed −9 … 8
-    assert!(plot[0] > -5.0 && plot[0] < -4.0 && plot[1] < 1.0, "{plot:?}");
+    assert!(
+        plot[0] > -5.0 && plot[0] < -4.0 && plot[1] < 1.0,
+        "{plot:?}"
+    );
     // λ = i: Euler is never stable (the slide says "never"), RK4 up to 2√2
     assert_eq!(e.readout("stability", "stable_h", "euler"), 0.0);
     let rk4_h = e.readout("stability", "stable_h", "rk4");
@@ -155,14 +178,21 @@ fn the_default_neptune_path_runs_away() {
     let euler = e.rows("instability", "euler");
     let start = euler[0][1].abs();
     let most = euler.iter().map(|r| r[1].abs()).fold(0.0, f64::max);
-    assert!(most > 10.0 * start, "Euler's |y| grows only {:.1}×", most / start);
+    assert!(
+        most > 10.0 * start,
+        "Euler's |y| grows only {:.1}×",
+        most / start
+    );
     // RK4 at the same h still decays, and λ is what the slide prints
     let rk4 = e.rows("instability", "rk4");
     assert!(rk4.last().unwrap()[1].abs() < start);
     assert!((e.readout("instability", "lambda_re", "") + 5.0).abs() < 1e-6);
     let h = e.readout("instability", "h", "");
     let euler_limit = e.readout("instability", "stable_h", "euler");
-    assert!((euler_limit - 0.4).abs() < 1e-6 && h > euler_limit, "h {h}, limit {euler_limit}");
+    assert!(
+        (euler_limit - 0.4).abs() < 1e-6 && h > euler_limit,
+        "h {h}, limit {euler_limit}"
+    );
 }
 
 #[test]
@@ -173,11 +203,7 @@ fn the_slope_fields_errors_are_at_the_end_of_the_interval() {
         let last = e.rows("slope-field", key).last().unwrap().clone();
         assert_eq!(last[0], t_end, "{key} ends at t_end");
         let err = e.readout("slope-field", "error_at_end", key);
-        let exact = e
-            .rows("slope-field", "exact")
-            .last()
-            .unwrap()
-            .clone();
+        let exact = e.rows("slope-field", "exact").last().unwrap().clone();
         assert_eq!(exact[0], t_end);
         assert!((err - (last[1] - exact[1]).abs()).abs() < 1e-12, "{key}");
     }
@@ -227,9 +253,15 @@ fn the_taylor_slide_shows_four_distinct_orders() {
     for n in 1..4 {
         let gap = near
             .iter()
-            .map(|&x| (truncation(t.function, t.a, n + 1, x) - truncation(t.function, t.a, n, x)).abs())
+            .map(|&x| {
+                (truncation(t.function, t.a, n + 1, x) - truncation(t.function, t.a, n, x)).abs()
+            })
             .fold(0.0, f64::max);
-        assert!(gap > 0.02, "orders {n} and {} coincide (differ by {gap})", n + 1);
+        assert!(
+            gap > 0.02,
+            "orders {n} and {} coincide (differ by {gap})",
+            n + 1
+        );
     }
 }
 
@@ -251,7 +283,10 @@ fn no_axis_is_printed_on_a_straight_step() {
     let step = ParallelTransport::new(spec).shown_step();
     assert!(step.angle_rad.abs() < 1e-6, "the default step is straight");
     let text = rotation_text(&step);
-    assert!(step.axis.is_none() && !text.contains("axis t_old"), "{text}");
+    assert!(
+        step.axis.is_none() && !text.contains("axis t_old"),
+        "{text}"
+    );
 }
 
 /// The counter counts the talk: the last slide paging reaches reads "n / n", and an optional
@@ -267,10 +302,19 @@ fn the_counter_agrees_with_paging() {
     }
     let n = seen.len();
     for (k, c) in seen.iter().enumerate() {
-        assert_eq!(c, &format!("{} / {n}", k + 1), "paging shows consecutive numbers");
+        assert_eq!(
+            c,
+            &format!("{} / {n}", k + 1),
+            "paging shows consecutive numbers"
+        );
     }
     for (i, s) in deck.slides.iter().enumerate().filter(|(_, s)| s.skip) {
-        assert_eq!(deck.counter(i), format!("{} · optional", i + 1), "{}", s.title);
+        assert_eq!(
+            deck.counter(i),
+            format!("{} · optional", i + 1),
+            "{}",
+            s.title
+        );
     }
     let title = &deck.slides[0];
     assert_eq!(title.layout, lectern::deck::Layout::Title);
@@ -290,12 +334,17 @@ fn the_convergence_slopes_are_the_orders() {
         ("dop853", 8.0, 0.3),
     ] {
         let slope = e.readout("convergence", "slope", key);
-        assert!((slope - order).abs() <= tol, "{key}: slope {slope}, order {order}");
+        assert!(
+            (slope - order).abs() <= tol,
+            "{key}: slope {slope}, order {order}"
+        );
     }
     // Vern9 reaches round-off (1e-15) after two halvings: two points are no measured order,
     // so no slope is printed (it used to read 10.53)
     assert!(
-        !e.readouts["convergence"].iter().any(|r| r.0 == "slope" && r.1 == "vern9"),
+        !e.readouts["convergence"]
+            .iter()
+            .any(|r| r.0 == "slope" && r.1 == "vern9"),
         "{:?}",
         e.readouts["convergence"]
     );
@@ -316,5 +365,8 @@ fn the_rk4_slide_names_the_typos_colour() {
         })
         .collect();
     let name = name_of(Role::Rk4Typo);
-    assert!(text.contains(&format!("{name} line")), "{text:?} does not say the {name} line");
+    assert!(
+        text.contains(&format!("{name} line")),
+        "{text:?} does not say the {name} line"
+    );
 }

@@ -506,7 +506,10 @@ fn typing_on_the_presenter_view_changes_the_plot_on_enter_and_ctrl_s_writes_it_b
     // a draft: the room (the slide's own widget) still sees the old equation, the presenter
     // a preview of the typed one
     assert_eq!(euler(&mut h), start, "the room sees nothing before Enter");
-    assert!(h.query_by_label_contains("preview (Enter shows it").is_some());
+    assert!(
+        h.query_by_label_contains("preview (Enter shows it")
+            .is_some()
+    );
     h.key_press(egui::Key::Enter);
     h.run_steps(3);
     let after = euler(&mut h);
@@ -530,11 +533,23 @@ fn typing_on_the_presenter_view_changes_the_plot_on_enter_and_ctrl_s_writes_it_b
         let state = h.state_mut().slide_state(0).unwrap();
         let d = state.widget_at(&[0]).unwrap().data().unwrap();
         let names: Vec<&str> = d.series.iter().map(|(n, _)| n.as_str()).collect();
-        assert!(names.contains(&"reference") && !names.contains(&"exact"), "{names:?}");
+        assert!(
+            names.contains(&"reference") && !names.contains(&"exact"),
+            "{names:?}"
+        );
     }
-    assert!(h.query_by_label_contains("exact solution was dropped").is_some());
-    assert!(h.query_by_label_contains("vs a fine RK4 reference (exact dropped)").is_some());
-    assert!(h.query_by_label_contains("preview (Enter shows it").is_none());
+    assert!(
+        h.query_by_label_contains("exact solution was dropped")
+            .is_some()
+    );
+    assert!(
+        h.query_by_label_contains("vs a fine RK4 reference (exact dropped)")
+            .is_some()
+    );
+    assert!(
+        h.query_by_label_contains("preview (Enter shows it")
+            .is_none()
+    );
     // an invalid edit (`*(` appended: every keystroke leaves it unparsable): the plot keeps
     // the last good equation, the error shows its column (the end, 18)
     h.get_all_by_role(egui::accesskit::Role::TextInput)

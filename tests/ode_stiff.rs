@@ -11,8 +11,8 @@ use lectern::ode::native::{Robertson, VanDerPol};
 use lectern::ode::problem::Problem;
 use lectern::ode::study::loglog_slope;
 use lectern::ode::{
-    Adaptive, FnSystem, Method, Outcome, System, solve_embedded, solve_fixed, solve_fixed_final,
-    Scheme,
+    Adaptive, FnSystem, Method, Outcome, Scheme, System, solve_embedded, solve_fixed,
+    solve_fixed_final,
 };
 
 const STIFF: [Method; 2] = [Method::Rodas5p, Method::Radau5];
@@ -107,7 +107,11 @@ fn stiff_methods_are_l_stable_and_fifth_order_at_the_origin() {
             let y = (k as f64 - 1000.0) * 0.05;
             for x in [0.0, -0.01, -1.0, -30.0] {
                 let r = m.stability((x, y)).unwrap();
-                assert!(r.0.hypot(r.1) <= 1.0 + 1e-13, "{m}: |R({x} + {y}i)| = {}", r.0.hypot(r.1));
+                assert!(
+                    r.0.hypot(r.1) <= 1.0 + 1e-13,
+                    "{m}: |R({x} + {y}i)| = {}",
+                    r.0.hypot(r.1)
+                );
             }
         }
         let err = |s: f64| {
@@ -117,11 +121,18 @@ fn stiff_methods_are_l_stable_and_fifth_order_at_the_origin() {
             (r.0 - e.0).hypot(r.1 - e.1)
         };
         for s in [0.4, 0.2, 0.1, 0.05, 0.025] {
-            eprintln!("{m}: |R(z) - e^z| at |z| = {:.3}: {:.3e}", s * 1.25f64.sqrt(), err(s));
+            eprintln!(
+                "{m}: |R(z) - e^z| at |z| = {:.3}: {:.3e}",
+                s * 1.25f64.sqrt(),
+                err(s)
+            );
         }
         // at least order 5 (slope 6); Rodas5P's R matches e^z one order further (slope ≈ 6.8)
         let slope = (err(0.2) / err(0.1)).log2();
-        assert!((5.8..7.3).contains(&slope), "{m}: local error slope {slope}");
+        assert!(
+            (5.8..7.3).contains(&slope),
+            "{m}: local error slope {slope}"
+        );
     }
     // implicit Euler damps everything stiff, implicit midpoint keeps |R| = 1 at ∞
     let r = Method::ImplicitMidpoint.stability((-1e8, 0.0)).unwrap();
@@ -138,7 +149,14 @@ fn prothero_robinson(lambda: f64) -> Problem {
     Problem::parse(&text, "pr.ron").unwrap()
 }
 
-fn fixed_errors(sys: &dyn System, m: Method, x0: &[f64], t_end: f64, exact: &[f64], ns: &[usize]) -> Vec<(f64, f64)> {
+fn fixed_errors(
+    sys: &dyn System,
+    m: Method,
+    x0: &[f64],
+    t_end: f64,
+    exact: &[f64],
+    ns: &[usize],
+) -> Vec<(f64, f64)> {
     ns.iter()
         .map(|&n| {
             let h = t_end / n as f64;
@@ -199,15 +217,28 @@ fn difference_jacobians_are_counted_and_agree() {
         d[0] = -1e3 * (x[0] - t.sin()) + t.cos()
     });
     let exact = solve_fixed(&p, Method::Rodas5p, 0.0, &[0.0], 0.1, 1.0, f64::INFINITY);
-    let fd = solve_fixed(&closure, Method::Rodas5p, 0.0, &[0.0], 0.1, 1.0, f64::INFINITY);
+    let fd = solve_fixed(
+        &closure,
+        Method::Rodas5p,
+        0.0,
+        &[0.0],
+        0.1,
+        1.0,
+        f64::INFINITY,
+    );
     assert_eq!(exact.f_evals, 10 * 8);
     assert_eq!(fd.f_evals, 10 * (8 + 1 + 1));
     let (a, b) = (exact.last().1[0], fd.last().1[0]);
-    assert!((a - b).abs() < 1e-7 && (a - 1f64.sin()).abs() < 1e-8, "{a} {b}");
+    assert!(
+        (a - b).abs() < 1e-7 && (a - 1f64.sin()).abs() < 1e-8,
+        "{a} {b}"
+    );
     // adaptive: Jacobian evaluations reported, one per accepted step for Rodas5P
     let s = solve_embedded(&p, Method::Rodas5p, 0.0, &[0.0], 1.0, opts(1e-8, 1e-10));
     assert!(s.finished());
-    assert!(s.work.jac_evals as usize >= s.steps && s.work.lu_decomps as usize == s.steps + s.rejected);
+    assert!(
+        s.work.jac_evals as usize >= s.steps && s.work.lu_decomps as usize == s.steps + s.rejected
+    );
 }
 
 /// Random but deterministic numbers in [lo, hi).
@@ -229,10 +260,21 @@ fn fd_derivatives(p: &dyn System, t: f64, x: &[f64]) -> (Vec<f64>, Vec<f64>) {
     let n = x.len();
     let mut jac = vec![0.0; n * n];
     let mut dt = vec![0.0; n];
-    let stencil = [(-3.0, -1.0 / 60.0), (-2.0, 3.0 / 20.0), (-1.0, -0.75), (1.0, 0.75), (2.0, -3.0 / 20.0), (3.0, 1.0 / 60.0)];
+    let stencil = [
+        (-3.0, -1.0 / 60.0),
+        (-2.0, 3.0 / 20.0),
+        (-1.0, -0.75),
+        (1.0, 0.75),
+        (2.0, -3.0 / 20.0),
+        (3.0, 1.0 / 60.0),
+    ];
     let mut f = vec![0.0; n];
     for j in 0..=n {
-        let scale = if j == 0 { 1.0 + t.abs() } else { 1.0 + x[j - 1].abs() };
+        let scale = if j == 0 {
+            1.0 + t.abs()
+        } else {
+            1.0 + x[j - 1].abs()
+        };
         let h = 2e-3 * scale;
         let mut acc = vec![0.0; n];
         for (k, w) in stencil {
@@ -266,7 +308,12 @@ fn assert_derivatives_match(p: &Problem, t: f64, x: &[f64], what: &str) {
     let mut dt = vec![0.0; n];
     assert!(p.jacobian(t, x, &mut jac) && p.time_derivative(t, x, &mut dt));
     let size = fd_j.iter().chain(&fd_t).fold(1.0f64, |m, v| m.max(v.abs()));
-    for (k, (a, b)) in jac.iter().zip(&fd_j).chain(dt.iter().zip(&fd_t)).enumerate() {
+    for (k, (a, b)) in jac
+        .iter()
+        .zip(&fd_j)
+        .chain(dt.iter().zip(&fd_t))
+        .enumerate()
+    {
         assert!(
             (a - b).abs() <= 1e-8 * size,
             "{what}: entry {k}: symbolic {a:e}, differences {b:e} at t = {t}, x = {x:?}"
@@ -341,9 +388,9 @@ fn symbolic_jacobians_of_random_expressions_equal_finite_differences() {
         for _ in 0..5 {
             let x = [rng.next(-1.5, 1.5), rng.next(-1.5, 1.5)];
             // |·|, min and max are not differentiable at their kinks: keep clear of them
-            let near_kink = [x[0], x[1], x[0] * x[1]]
-                .iter()
-                .any(|v| (v + 0.37).abs() < 0.1 || (v - 0.61).abs() < 0.1 || (v + 0.43).abs() < 0.1);
+            let near_kink = [x[0], x[1], x[0] * x[1]].iter().any(|v| {
+                (v + 0.37).abs() < 0.1 || (v - 0.61).abs() < 0.1 || (v + 0.43).abs() < 0.1
+            });
             if !near_kink && !text.contains("max") && !text.contains("abs") {
                 assert_derivatives_match(&p, rng.next(0.0, 2.0), &x, &format!("#{k}: {e1}; {e2}"));
             }
@@ -369,7 +416,13 @@ fn robertson_to_1e11_matches_the_test_set_and_conserves_mass() {
             let y = s.last().1;
             for i in 0..3 {
                 let rel = (y[i] - y_ref[i]).abs() / y_ref[i];
-                assert!(rel < 10.0 * rtol, "{m} ({what}): y{} = {:e}, reference {:e} ({rel:e})", i + 1, y[i], y_ref[i]);
+                assert!(
+                    rel < 10.0 * rtol,
+                    "{m} ({what}): y{} = {:e}, reference {:e} ({rel:e})",
+                    i + 1,
+                    y[i],
+                    y_ref[i]
+                );
             }
             let mass = y.iter().sum::<f64>() - 1.0;
             assert!(mass.abs() < 1e-12, "{m}: y1 + y2 + y3 - 1 = {mass:e}");
@@ -403,9 +456,17 @@ fn van_der_pol_mu_1000_is_cheap_and_right() {
         assert!(s.finished(), "{m}: {}", s.outcome);
         let y = s.last().1;
         let err = (y[0] - y_ref[0]).abs() / y_ref[0].abs();
-        eprintln!("{m}: {} f ({} J, {} LU), error {err:.1e}; scipy Radau {scipy_radau} f", s.f_evals, s.work.jac_evals, s.work.lu_decomps);
+        eprintln!(
+            "{m}: {} f ({} J, {} LU), error {err:.1e}; scipy Radau {scipy_radau} f",
+            s.f_evals, s.work.jac_evals, s.work.lu_decomps
+        );
         assert!(s.f_evals <= 30_000, "{m}: {} f-evaluations", s.f_evals);
-        assert!(err < 1e-3, "{m}: y1(3000) = {}, reference {}", y[0], y_ref[0]);
+        assert!(
+            err < 1e-3,
+            "{m}: y1(3000) = {}, reference {}",
+            y[0],
+            y_ref[0]
+        );
     }
 }
 
@@ -421,7 +482,11 @@ fn stiff_opts() -> Adaptive {
 #[test]
 fn explicit_pairs_report_stiffness_on_stiff_problems_only() {
     for m in [Method::Dopri5, Method::Dop853] {
-        for (name, t_end) in [("robertson", 1e5), ("vanderpol-1000", 3000.0), ("vanderpol", 2.0)] {
+        for (name, t_end) in [
+            ("robertson", 1e5),
+            ("vanderpol-1000", 3000.0),
+            ("vanderpol", 2.0),
+        ] {
             let p = problem(name);
             let start = Instant::now();
             let s = solve_embedded(&p, m, 0.0, &p.initial, t_end, stiff_opts());
@@ -429,10 +494,20 @@ fn explicit_pairs_report_stiffness_on_stiff_problems_only() {
             let Outcome::Stiff { t } = s.outcome else {
                 panic!("{m} on {name}: {}", s.outcome);
             };
-            assert!(t > 0.0 && t < t_end && secs < 1.0, "{m} on {name}: t = {t}, {secs} s");
+            assert!(
+                t > 0.0 && t < t_end && secs < 1.0,
+                "{m} on {name}: t = {t}, {secs} s"
+            );
             assert!(s.outcome.to_string().contains("looks stiff at t = "));
-            assert!(s.outcome.to_string().contains("try --method rodas5p or radau5"));
-            eprintln!("{m} on {name}: stiff at t = {t:.4} after {} steps, {secs:.4} s", s.steps);
+            assert!(
+                s.outcome
+                    .to_string()
+                    .contains("try --method rodas5p or radau5")
+            );
+            eprintln!(
+                "{m} on {name}: stiff at t = {t:.4} after {} steps, {secs:.4} s",
+                s.steps
+            );
         }
         // long non-stiff runs (well over the 1000 steps between tests) finish
         for (name, t_end, rtol) in [
@@ -443,9 +518,29 @@ fn explicit_pairs_report_stiffness_on_stiff_problems_only() {
             ("logistic", 100.0, 1e-10),
         ] {
             let p = problem(name);
-            let s = solve_embedded(&p, m, 0.0, &p.initial, t_end, Adaptive { rtol, atol: rtol, ..stiff_opts() });
-            assert!(s.finished(), "{m} on {name}: {} after {} steps", s.outcome, s.steps);
-            assert!(s.steps > 1000 || name == "logistic", "{m} on {name}: only {} steps", s.steps);
+            let s = solve_embedded(
+                &p,
+                m,
+                0.0,
+                &p.initial,
+                t_end,
+                Adaptive {
+                    rtol,
+                    atol: rtol,
+                    ..stiff_opts()
+                },
+            );
+            assert!(
+                s.finished(),
+                "{m} on {name}: {} after {} steps",
+                s.outcome,
+                s.steps
+            );
+            assert!(
+                s.steps > 1000 || name == "logistic",
+                "{m} on {name}: only {} steps",
+                s.steps
+            );
         }
         // without the flag the pair grinds on (here for a bounded span)
         let p = problem("robertson");
@@ -473,7 +568,14 @@ fn bad_input_fails_clearly() {
     }
     for m in STIFF {
         // NaN in the Jacobian
-        let s = solve_embedded(&BadJacobian(f64::NAN), m, 0.0, &[1.0, 0.0], 1.0, opts(1e-6, 1e-9));
+        let s = solve_embedded(
+            &BadJacobian(f64::NAN),
+            m,
+            0.0,
+            &[1.0, 0.0],
+            1.0,
+            opts(1e-6, 1e-9),
+        );
         match &s.outcome {
             Outcome::Failed { t, reason } => {
                 assert_eq!(*t, 0.0);
@@ -482,7 +584,14 @@ fn bad_input_fails_clearly() {
             other => panic!("{m}: {other:?}"),
         }
         // a Newton matrix singular at every h the run can reach (round-off wipes the pivot)
-        let s = solve_embedded(&BadJacobian(1e300), m, 0.0, &[1.0, 0.0], 1.0, opts(1e-6, 1e-9));
+        let s = solve_embedded(
+            &BadJacobian(1e300),
+            m,
+            0.0,
+            &[1.0, 0.0],
+            1.0,
+            opts(1e-6, 1e-9),
+        );
         match &s.outcome {
             Outcome::Failed { t, reason } => {
                 assert_eq!(*t, 0.0);
@@ -500,7 +609,10 @@ fn bad_input_fails_clearly() {
         match &s.outcome {
             Outcome::Failed { t, reason } => {
                 assert!((t - 0.5).abs() < 1e-6, "{m}: t = {t}");
-                assert!(reason.contains("underflow") || reason.contains("NaN"), "{m}: {reason}");
+                assert!(
+                    reason.contains("underflow") || reason.contains("NaN"),
+                    "{m}: {reason}"
+                );
             }
             other => panic!("{m}: {other:?}"),
         }
@@ -508,12 +620,20 @@ fn bad_input_fails_clearly() {
         // tolerances
         for (rtol, atol) in [(0.0, 1e-9), (1e-6, 0.0), (f64::NAN, 1e-9), (1e-6, f64::NAN)] {
             let s = solve_embedded(&nan_later, m, 0.0, &[1.0], 1.0, opts(rtol, atol));
-            assert!(matches!(s.outcome, Outcome::Failed { t: 0.0, .. }), "{m}: {:?}", s.outcome);
+            assert!(
+                matches!(s.outcome, Outcome::Failed { t: 0.0, .. }),
+                "{m}: {:?}",
+                s.outcome
+            );
         }
         // a state that leaves the bound is divergence, as for every method
         let blowup = FnSystem::new(1, |_t, x: &[f64], d: &mut [f64]| d[0] = x[0] * x[0]);
         let s = solve_embedded(&blowup, m, 0.0, &[1.0], 2.0, opts(1e-6, 1e-9));
-        assert!(matches!(s.outcome, Outcome::Diverged { .. } | Outcome::Failed { .. }), "{m}: {:?}", s.outcome);
+        assert!(
+            matches!(s.outcome, Outcome::Diverged { .. } | Outcome::Failed { .. }),
+            "{m}: {:?}",
+            s.outcome
+        );
     }
 }
 
@@ -523,7 +643,12 @@ fn bad_input_fails_clearly() {
 #[test]
 fn work_is_comparable_to_scipy_radau() {
     let reference = reference();
-    let cases = [("vanderpol-1000", "vanderpol-1000", 3000.0), ("robertson-1e5", "robertson", 1e5), ("hires", "hires", 321.8122), ("orego", "orego", 360.0)];
+    let cases = [
+        ("vanderpol-1000", "vanderpol-1000", 3000.0),
+        ("robertson-1e5", "robertson", 1e5),
+        ("hires", "hires", 321.8122),
+        ("orego", "orego", 360.0),
+    ];
     for (key, file, t_end) in cases {
         let r = &reference["problems"][key];
         let scale = r["atol_over_rtol"].as_f64().unwrap();
@@ -540,8 +665,15 @@ fn work_is_comparable_to_scipy_radau() {
             for m in STIFF {
                 let s = solve_embedded(&p, m, 0.0, &p.initial, t_end, opts(rtol, rtol * scale));
                 assert!(s.finished(), "{m} on {key} at {rtol:e}: {}", s.outcome);
-                eprintln!("{key} {rtol:.0e}: {m} {} f, scipy Radau {scipy} f", s.f_evals);
-                assert!(s.f_evals <= 2 * scipy, "{m} on {key} at {rtol:e}: {} f vs scipy's {scipy}", s.f_evals);
+                eprintln!(
+                    "{key} {rtol:.0e}: {m} {} f, scipy Radau {scipy} f",
+                    s.f_evals
+                );
+                assert!(
+                    s.f_evals <= 2 * scipy,
+                    "{m} on {key} at {rtol:e}: {} f vs scipy's {scipy}",
+                    s.f_evals
+                );
             }
         }
     }

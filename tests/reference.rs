@@ -6,12 +6,12 @@
 
 use std::path::Path;
 
+use lectern::deck::widgets::scene::{SceneCameraSpec, SceneToggles, SceneView};
 use lectern::deck::widgets::{
     ConvergenceSpec, NeptuneSpec, ParallelTransportSpec, RigidBodySpec, SceneSpec,
     SimulationLoopSpec, SlopeFieldSpec, SpiralSpec, StabilitySpec, StepSpec, TaylorSpec,
     WidgetSpec, WorkPrecisionSpec,
 };
-use lectern::deck::widgets::scene::{SceneCameraSpec, SceneToggles, SceneView};
 use lectern::deck::{Block, BookmarkDecl, Deck, Layout, Slide, Theme};
 use serde::de::DeserializeOwned;
 
@@ -103,10 +103,17 @@ fn mentions(doc: &str, marker: &str, names: &[&str]) {
 fn every_deck_level_field_is_in_the_reference() {
     let doc = reference();
     let deck = struct_fields::<Deck>();
-    assert!(deck.contains(&"aspect") && deck.contains(&"bookmarks"), "{deck:?}");
+    assert!(
+        deck.contains(&"aspect") && deck.contains(&"bookmarks"),
+        "{deck:?}"
+    );
     has_rows(&doc, "## The deck: `Deck`", &deck);
     has_rows(&doc, "## A slide: `Slide`", &struct_fields::<Slide>());
-    has_rows(&doc, "## A bookmark: `BookmarkDecl`", &struct_fields::<BookmarkDecl>());
+    has_rows(
+        &doc,
+        "## A bookmark: `BookmarkDecl`",
+        &struct_fields::<BookmarkDecl>(),
+    );
     mentions(&doc, "## The deck: `Deck`", &variants::<Theme>());
     mentions(&doc, "## A slide: `Slide`", &variants::<Layout>());
 }
@@ -115,17 +122,23 @@ fn every_deck_level_field_is_in_the_reference() {
 fn every_block_and_its_fields_are_in_the_reference() {
     let doc = reference();
     let blocks = variants::<Block>();
-    assert_eq!(blocks.len(), 6, "{blocks:?}");
+    assert_eq!(blocks.len(), 7, "{blocks:?}");
     has_rows(&doc, "## Blocks", &blocks);
     // the struct variants' fields, in their rows
-    for (variant, text) in [("Math", "Math(zz_no_such_field: 0)"), ("Image", "Image(zz_no_such_field: 0)")] {
+    for (variant, text) in [
+        ("Math", "Math(zz_no_such_field: 0)"),
+        ("Image", "Image(zz_no_such_field: 0)"),
+    ] {
         let names = fields::<Block>(text);
         let row = section(&doc, "## Blocks")
             .lines()
             .find(|l| l.starts_with(&format!("| `{variant}` |")))
             .unwrap();
         for n in names {
-            assert!(row.contains(&format!("`{n}`")), "{variant}: `{n}` not in {row}");
+            assert!(
+                row.contains(&format!("`{n}`")),
+                "{variant}: `{n}` not in {row}"
+            );
         }
     }
 }
@@ -145,7 +158,10 @@ fn every_widget_and_every_widget_field_is_in_the_reference() {
         ("WorkPrecision", struct_fields::<WorkPrecisionSpec>()),
         ("Stability", struct_fields::<StabilitySpec>()),
         ("RigidBody", struct_fields::<RigidBodySpec>()),
-        ("ParallelTransport", struct_fields::<ParallelTransportSpec>()),
+        (
+            "ParallelTransport",
+            struct_fields::<ParallelTransportSpec>(),
+        ),
         ("SimulationLoop", struct_fields::<SimulationLoopSpec>()),
         ("Scene", struct_fields::<SceneSpec>()),
     ];
@@ -160,18 +176,33 @@ fn every_widget_and_every_widget_field_is_in_the_reference() {
         );
     }
     has_rows(&doc, "`SceneToggles` — ", &struct_fields::<SceneToggles>());
-    has_rows(&doc, "`SceneCameraSpec` — ", &struct_fields::<SceneCameraSpec>());
+    has_rows(
+        &doc,
+        "`SceneCameraSpec` — ",
+        &struct_fields::<SceneCameraSpec>(),
+    );
     mentions(&doc, "### `Scene`", &variants::<SceneView>());
-    mentions(&doc, "### `Taylor`", &variants::<lectern::deck::widgets::TaylorFn>());
+    mentions(
+        &doc,
+        "### `Taylor`",
+        &variants::<lectern::deck::widgets::TaylorFn>(),
+    );
 }
 
 #[test]
 fn every_problem_file_and_tableau_field_is_in_the_reference() {
     let doc = reference();
     let problem = struct_fields::<lectern::ode::problem::ProblemDef>();
-    assert!(problem.contains(&"exact") && problem.contains(&"ranges"), "{problem:?}");
+    assert!(
+        problem.contains(&"exact") && problem.contains(&"ranges"),
+        "{problem:?}"
+    );
     has_rows(&doc, "## A problem file: `ProblemDef`", &problem);
-    has_rows(&doc, "## A tableau file: `Tableau`", &struct_fields::<lectern::ode::Tableau>());
+    has_rows(
+        &doc,
+        "## A tableau file: `Tableau`",
+        &struct_fields::<lectern::ode::Tableau>(),
+    );
 }
 
 #[test]

@@ -559,7 +559,10 @@ fn the_sky_is_bluer_above_the_horizon_brightest_at_the_sun_and_the_env_mean_is_t
         }
     }
     let off = ((at.0 as f64 - w as f64 / 2.0).hypot(at.1 as f64 - hgt as f64 / 2.0)) as u32;
-    assert!(off <= 4, "the brightest pixel {at:?} is {off} px from the sun at the centre");
+    assert!(
+        off <= 4,
+        "the brightest pixel {at:?} is {off} px from the sun at the centre"
+    );
     assert!(best > 250.0, "the sun disc is white-hot: {best}");
 
     // away from the sun, looking at the horizon
@@ -611,8 +614,8 @@ fn along_a_line_of_sight_through_the_horizon_every_pixel_below_it_is_water() {
         let (w, hgt) = img.dimensions();
         let fov = h.sim.camera.fov_deg.to_radians();
         // the true horizon's row: `pitch` degrees above the centre
-        let horizon_row = hgt as f32 / 2.0
-            - (pitch.to_radians().tan() / (fov / 2.0).tan()) * hgt as f32 / 2.0;
+        let horizon_row =
+            hgt as f32 / 2.0 - (pitch.to_radians().tan() / (fov / 2.0).tan()) * hgt as f32 / 2.0;
         let first = (horizon_row + 2.0).max(0.0) as u32;
         let mut sky_below = 0;
         for y in first..hgt {
@@ -629,6 +632,9 @@ fn along_a_line_of_sight_through_the_horizon_every_pixel_below_it_is_water() {
         );
         // and the sky is there above it (the test can see the difference)
         let above = img.get_pixel(w / 2, (horizon_row - 4.0).max(0.0) as u32);
-        assert!(above[0] < 8 && above[1] < 8 && above[2] < 8, "sky above: {above:?}");
+        assert!(
+            above[0] < 8 && above[1] < 8 && above[2] < 8,
+            "sky above: {above:?}"
+        );
     }
 }

@@ -99,7 +99,11 @@ fn out_of_range_values_name_the_field() {
             "unknown material",
         ),
         ("turbidity: 2.2", "turbidity: 40.0", "turbidity"),
-        ("significant_height: 0.2", "significant_height: -1.0", "significant_height"),
+        (
+            "significant_height: 0.2",
+            "significant_height: -1.0",
+            "significant_height",
+        ),
         ("count: 24", "count: 40", "count"),
     ];
     for (from, to, needle) in cases {

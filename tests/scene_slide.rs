@@ -305,7 +305,10 @@ fn scene_mode_shows_the_same_pixels_as_render_scene() {
         })
         .unwrap();
     let (ok, failing) = within_tolerance(&with_readout, &want);
-    assert!(!ok, "the readout, when on, is visible ({failing} pixels fail)");
+    assert!(
+        !ok,
+        "the readout, when on, is visible ({failing} pixels fail)"
+    );
 }
 
 /// In the window the slides' scene reloads like scene mode: a saved shader redraws the picture,

@@ -456,7 +456,11 @@ fn the_scene_schools_are_clustered_and_polarised_and_miss_the_seabed_and_rocks()
     let obstacles = sim::rock_obstacles(&scene);
     let env = sim::environment(&scene, &waves, None, &obstacles);
     let p = scene.school.clone();
-    assert!(p.school_count() >= 3, "several schools: {}", p.school_count());
+    assert!(
+        p.school_count() >= 3,
+        "several schools: {}",
+        p.school_count()
+    );
     let mut s = School::new(&p, &env);
     // the rocks' real meshes: the farthest vertex of each from its centre
     let rocks: Vec<(Vec3, f32)> = scene
@@ -484,7 +488,10 @@ fn the_scene_schools_are_clustered_and_polarised_and_miss_the_seabed_and_rocks()
         if step % 20 == 0 {
             for i in 0..s.len() {
                 let x = s.position(i);
-                assert!(x.y >= seabed_top - 1e-4, "step {step}: fish {i} in the seabed at {x}");
+                assert!(
+                    x.y >= seabed_top - 1e-4,
+                    "step {step}: fish {i} in the seabed at {x}"
+                );
                 for &(c, reach) in &rocks {
                     assert!(
                         x.distance(c) > reach,
@@ -496,11 +503,19 @@ fn the_scene_schools_are_clustered_and_polarised_and_miss_the_seabed_and_rocks()
     }
     let (lo, hi) = env.swim_box();
     for k in 0..p.school_count() {
-        let members: Vec<usize> = (0..s.len()).filter(|&i| p.school_of(s.id(i)) == k).collect();
+        let members: Vec<usize> = (0..s.len())
+            .filter(|&i| p.school_of(s.id(i)) == k)
+            .collect();
         let points: Vec<Vec3> = members.iter().map(|&i| s.position(i)).collect();
         let mut g = SplitMix64::new(99 + k as u64);
         let uniform: Vec<Vec3> = (0..points.len())
-            .map(|_| Vec3::new(g.range(lo.x, hi.x), g.range(lo.y, hi.y), g.range(lo.z, hi.z)))
+            .map(|_| {
+                Vec3::new(
+                    g.range(lo.x, hi.x),
+                    g.range(lo.y, hi.y),
+                    g.range(lo.z, hi.z),
+                )
+            })
             .collect();
         let ratio = mean_nearest_neighbour(&points) / mean_nearest_neighbour(&uniform);
         let heading: Vec3 = members
@@ -514,7 +529,10 @@ fn the_scene_schools_are_clustered_and_polarised_and_miss_the_seabed_and_rocks()
             members.len()
         );
         assert!(ratio < 0.5, "school {k}: Clark–Evans ratio {ratio}");
-        assert!(polarisation > 0.8, "school {k}: polarisation {polarisation}");
+        assert!(
+            polarisation > 0.8,
+            "school {k}: polarisation {polarisation}"
+        );
     }
 }
 
@@ -528,6 +546,13 @@ fn a_scattered_school_fails_the_school_measures() {
         ..Default::default()
     };
     let s = School::new(&p, &env);
-    let heading: Vec3 = (0..s.len()).map(|i| s.velocity(i).normalize()).sum::<Vec3>() / s.len() as f32;
-    assert!(heading.length() < 0.3, "random headings: {}", heading.length());
+    let heading: Vec3 = (0..s.len())
+        .map(|i| s.velocity(i).normalize())
+        .sum::<Vec3>()
+        / s.len() as f32;
+    assert!(
+        heading.length() < 0.3,
+        "random headings: {}",
+        heading.length()
+    );
 }

@@ -93,9 +93,17 @@ fn the_project_slides_are_optional_and_show_the_live_scene() {
         "draw call, env map, normal map, shadows, BRDF, particles, the GPU Gems article (caustics)"
     );
     let last_main = d.slides.iter().rposition(|s| !s.skip).unwrap();
-    assert_eq!(d.slides[last_main].key(), "summary", "the talk ends on its summary");
+    assert_eq!(
+        d.slides[last_main].key(),
+        "summary",
+        "the talk ends on its summary"
+    );
     for s in project {
-        assert!(d.find(s.key()).unwrap() > last_main, "{}: after the summary", s.title);
+        assert!(
+            d.find(s.key()).unwrap() > last_main,
+            "{}: after the summary",
+            s.title
+        );
         assert!(
             s.skip,
             "{}: optional (skip: true), outside the 15:00 plan",
@@ -330,9 +338,17 @@ fn no_text_overlaps_and_every_widget_stays_in_its_slot() {
             }
         }
     }
-    assert!(texts_checked > 1000 && widgets_checked >= 4 * 20, "{texts_checked} {widgets_checked}");
+    assert!(
+        texts_checked > 1000 && widgets_checked >= 4 * 20,
+        "{texts_checked} {widgets_checked}"
+    );
     failures.dedup();
-    assert!(failures.is_empty(), "{} problems:\n{}", failures.len(), failures.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "{} problems:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
 }
 
 /// A thumbnail (the overview's, the presenter's "next") is the slide scaled down: the slide
@@ -394,13 +410,21 @@ fn thumbnails_are_the_slide_scaled_down() {
         }
         let mean = sum / f64::from(w * h);
         let far_frac = far as f64 / f64::from(w * h);
-        report.push(format!("slide {}: mean {mean:.2}, far {:.3} %", n + 1, 100.0 * far_frac));
+        report.push(format!(
+            "slide {}: mean {mean:.2}, far {:.3} %",
+            n + 1,
+            100.0 * far_frac
+        ));
         if mean > MEAN_MAX || far_frac > FAR_MAX {
             failures.push(n + 1);
         }
     }
     println!("{}", report.join("\n"));
-    assert!(failures.is_empty(), "slides {failures:?}:\n{}", report.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "slides {failures:?}:\n{}",
+        report.join("\n")
+    );
 }
 /// Bounds of [`thumbnails_are_the_slide_scaled_down`] (channel levels 0…255): measured on the
 /// bundled deck, see docs/slides.md.
@@ -434,12 +458,18 @@ fn controls_presenter_shows_values_not_sliders() {
         (sliders, boxes, texts)
     };
     let (sliders, boxes, _) = run(lectern::deck::Controls::Slide, false);
-    assert!(sliders >= 1 && boxes >= 4, "{sliders} sliders, {boxes} checkboxes");
+    assert!(
+        sliders >= 1 && boxes >= 4,
+        "{sliders} sliders, {boxes} checkboxes"
+    );
     let (sliders, boxes, texts) = run(lectern::deck::Controls::Presenter, false);
     assert_eq!((sliders, boxes), (0, 0), "the projector shows no controls");
     assert!(texts.iter().any(|t| t.contains("h = 0.500")), "{texts:?}");
     for legend in ["Euler", "Midpoint", "RK4", "exact"] {
-        assert!(texts.iter().any(|t| t.trim() == legend), "{legend} in {texts:?}");
+        assert!(
+            texts.iter().any(|t| t.trim() == legend),
+            "{legend} in {texts:?}"
+        );
     }
     let (sliders, _, _) = run(lectern::deck::Controls::Presenter, true);
     assert!(sliders >= 1, "C brings the controls back");

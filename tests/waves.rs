@@ -139,7 +139,10 @@ fn the_spectrum_is_seeded_scaled_to_its_height_and_spread_about_the_wind() {
         ..spec.clone()
     };
     assert_ne!(waves, other.waves(), "another seed, another sea");
-    let m0: f64 = waves.iter().map(|w| (w.amplitude as f64).powi(2) / 2.0).sum();
+    let m0: f64 = waves
+        .iter()
+        .map(|w| (w.amplitude as f64).powi(2) / 2.0)
+        .sum();
     let hs = 4.0 * m0.sqrt();
     assert!(
         (hs - spec.significant_height as f64).abs() < 1e-4,
@@ -149,22 +152,39 @@ fn the_spectrum_is_seeded_scaled_to_its_height_and_spread_about_the_wind() {
     for w in &waves {
         let k = std::f64::consts::TAU / w.wavelength as f64;
         let c = (GRAVITY / k).sqrt();
-        assert!((w.speed as f64 - c).abs() < 1e-3 * c, "{w:?}: deep water c = {c}");
+        assert!(
+            (w.speed as f64 - c).abs() < 1e-3 * c,
+            "{w:?}: deep water c = {c}"
+        );
     }
     let biggest = waves
         .iter()
         .max_by(|a, b| a.amplitude.total_cmp(&b.amplitude))
         .unwrap();
     let ratio = biggest.wavelength / spec.peak_wavelength;
-    assert!((0.6..=1.6).contains(&ratio), "the biggest wave is {ratio}× the peak");
+    assert!(
+        (0.6..=1.6).contains(&ratio),
+        "the biggest wave is {ratio}× the peak"
+    );
     // shorter than the peak: a broad range of lengths (an irregular sea, not a lattice)
-    let shortest = waves.iter().map(|w| w.wavelength).fold(f32::INFINITY, f32::min);
-    assert!(shortest < 0.15 * spec.peak_wavelength, "shortest {shortest}");
+    let shortest = waves
+        .iter()
+        .map(|w| w.wavelength)
+        .fold(f32::INFINITY, f32::min);
+    assert!(
+        shortest < 0.15 * spec.peak_wavelength,
+        "shortest {shortest}"
+    );
     let wind = glam::Vec2::from(spec.wind_direction).normalize();
-    let mean_cos: f32 =
-        waves.iter().map(|w| glam::Vec2::from(w.direction).normalize().dot(wind)).sum::<f32>()
-            / waves.len() as f32;
-    assert!(mean_cos > 0.7 && mean_cos < 0.99, "spread about the wind: mean cos {mean_cos}");
+    let mean_cos: f32 = waves
+        .iter()
+        .map(|w| glam::Vec2::from(w.direction).normalize().dot(wind))
+        .sum::<f32>()
+        / waves.len() as f32;
+    assert!(
+        mean_cos > 0.7 && mean_cos < 0.99,
+        "spread about the wind: mean cos {mean_cos}"
+    );
     let sum = WaveSum::new(waves, 0.0);
     assert!(sum.horizontal_steepness() < 1.0);
     // and the sum is the same Gerstner function: heights at world points sit on the surface

@@ -730,7 +730,12 @@ fn one_colour_per_method_across_the_deck_distinct_on_every_slide() {
         on_slide.dedup();
         for (name, c) in &on_slide {
             let (first, at) = *seen.entry(name.clone()).or_insert((*c, i + 1));
-            assert_eq!(first, *c, "{name} is {first:?} on slide {at} but {c:?} on {}", i + 1);
+            assert_eq!(
+                first,
+                *c,
+                "{name} is {first:?} on slide {at} but {c:?} on {}",
+                i + 1
+            );
             for theme in [lectern::deck::Theme::Dark, lectern::deck::Theme::Light] {
                 let p = lectern::app::theme::Palette::of(theme);
                 for bg in [p.background, p.panel] {
@@ -753,8 +758,14 @@ fn one_colour_per_method_across_the_deck_distinct_on_every_slide() {
         }
         slides_checked += usize::from(on_slide.len() > 1);
     }
-    assert!(slides_checked >= 8, "{slides_checked} slides compare methods");
+    assert!(
+        slides_checked >= 8,
+        "{slides_checked} slides compare methods"
+    );
     // the names slides use for them
-    assert_eq!(colors::name_of(colors::Role::Method(lectern::ode::Method::Euler)), "vermillion");
+    assert_eq!(
+        colors::name_of(colors::Role::Method(lectern::ode::Method::Euler)),
+        "vermillion"
+    );
     assert_eq!(colors::name_of(colors::Role::Rk4Typo), "pink");
 }

@@ -209,7 +209,11 @@ fn block_ui(
                     .map(|h| h + look.scaled(size::BLOCK_GAP) + ui.spacing().item_spacing.y)
                     .sum()
             };
-            let leads: Vec<f32> = cols.iter().enumerate().map(|(c, col)| lead(c, col)).collect();
+            let leads: Vec<f32> = cols
+                .iter()
+                .enumerate()
+                .map(|(c, col)| lead(c, col))
+                .collect();
             let max_lead = leads.iter().copied().fold(0.0, f32::max);
             for (c, col) in cols.iter().enumerate() {
                 let rect =

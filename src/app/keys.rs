@@ -251,13 +251,13 @@ mod tests {
     #[test]
     fn ctrl_q_quits_and_is_in_the_help_a_bare_q_does_nothing() {
         let ctrl = Modifiers::CTRL;
-        assert_eq!(
-            actions(&[press(Key::Q, ctrl)], KeyMode::Normal),
-            vec![Quit]
-        );
+        assert_eq!(actions(&[press(Key::Q, ctrl)], KeyMode::Normal), vec![Quit]);
         assert_eq!(while_editing(&press(Key::Q, ctrl)), Some(Quit));
         assert!(actions(&[press(Key::Q, Modifiers::NONE)], KeyMode::Normal).is_empty());
-        assert!(HELP.iter().any(|(k, what)| *k == "Ctrl+Q" && *what == "quit"));
+        assert!(
+            HELP.iter()
+                .any(|(k, what)| *k == "Ctrl+Q" && *what == "quit")
+        );
     }
 
     #[test]

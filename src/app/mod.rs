@@ -33,5 +33,7 @@ mod windows;
 pub use lectern_app::{LecternApp, Mode, Overlay};
 pub use offscreen::{OffscreenError, OffscreenRenderer, render_slide_png};
 pub use scene_mode::SceneMode;
-pub use slide_state::{DeckState, DrawnWidget, SlideResponse, SlideState, TweakSnapshot, drawn_widgets};
+pub use slide_state::{
+    DeckState, DrawnWidget, SlideResponse, SlideState, TweakSnapshot, drawn_widgets,
+};
 pub use slide_view::{SlideOptions, slide_ui, slide_ui_with};

@@ -57,12 +57,7 @@ pub fn equation_ui(ui: &mut egui::Ui, kind: &str, ode: &mut LiveOde) {
     } else {
         format!("{kind}: {}", def.name)
     };
-    ui.label(
-        RichText::new(format!(
-            "{name} (type, then Enter to show it; Esc reverts)"
-        ))
-        .strong(),
-    );
+    ui.label(RichText::new(format!("{name} (type, then Enter to show it; Esc reverts)")).strong());
     if let Some(e) = ode.load_error() {
         ui.label(RichText::new(e).color(ERROR));
     }

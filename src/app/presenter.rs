@@ -135,17 +135,17 @@ pub fn presenter_ui(
                 .auto_shrink([false, false])
                 .scroll_bar_visibility(egui::scroll_area::ScrollBarVisibility::AlwaysVisible)
                 .show(&mut child, |ui| {
-                ui.label(
-                    RichText::new("Live controls (R resets, Ctrl+S writes back)")
-                        .color(palette.dim),
-                );
-                let state = states.slide(slide);
-                if state.widget_count() == 0 {
-                    ui.label(RichText::new("no live widgets on this slide").color(palette.dim));
-                }
-                super::ode_editor::ode_editor_ui(ui, state);
-                state.controls_ui(ui);
-            });
+                    ui.label(
+                        RichText::new("Live controls (R resets, Ctrl+S writes back)")
+                            .color(palette.dim),
+                    );
+                    let state = states.slide(slide);
+                    if state.widget_count() == 0 {
+                        ui.label(RichText::new("no live widgets on this slide").color(palette.dim));
+                    }
+                    super::ode_editor::ode_editor_ui(ui, state);
+                    state.controls_ui(ui);
+                });
         }
     }
 

@@ -88,7 +88,10 @@ impl SceneMode {
         if let Some(sp) = &mut sc.water.spectrum {
             ui.collapsing("wind sea (JONSWAP)", |ui| {
                 ui.add(egui::Slider::new(&mut sp.significant_height, 0.0..=1.5).text("H_s (m)"));
-                ui.add(egui::Slider::new(&mut sp.peak_wavelength, 1.0..=40.0).text("peak wavelength (m)"));
+                ui.add(
+                    egui::Slider::new(&mut sp.peak_wavelength, 1.0..=40.0)
+                        .text("peak wavelength (m)"),
+                );
                 ui.add(egui::Slider::new(&mut sp.spread_deg, 0.0..=90.0).text("spread (°)"));
                 ui.add(egui::Slider::new(&mut sp.steepness, 0.0..=1.0).text("steepness Q"));
             });
@@ -176,7 +179,10 @@ impl SceneMode {
         ui.add(egui::Slider::new(&mut p.separation_weight, 0.0..=5.0).text("separation"));
         ui.add(egui::Slider::new(&mut p.alignment_weight, 0.0..=5.0).text("alignment"));
         ui.add(egui::Slider::new(&mut p.cohesion_weight, 0.0..=5.0).text("cohesion"));
-        ui.add(egui::Slider::new(&mut p.goal_weight, 0.0..=3.0).text("pull to the school's centre (1/s²)"));
+        ui.add(
+            egui::Slider::new(&mut p.goal_weight, 0.0..=3.0)
+                .text("pull to the school's centre (1/s²)"),
+        );
         ui.add(egui::Slider::new(&mut p.schools, 1..=crate::school::MAX_SCHOOLS).text("schools"));
         ui.add(egui::Slider::new(&mut p.flee_radius, 0.0..=10.0).text("flee radius (m)"));
         let w = self.sim.scene.simulation.school_half_width;

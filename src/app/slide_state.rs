@@ -109,7 +109,12 @@ impl SlideState {
         let fresh = !matches!(self.previews.get(path), Some((d, _)) if *d == def);
         if fresh {
             let mut widget = live.spec.instantiate_in(deck_path.as_deref());
-            carry_tweaks(&live.spec, live.widget.as_mut(), widget.as_mut(), deck_path.as_deref());
+            carry_tweaks(
+                &live.spec,
+                live.widget.as_mut(),
+                widget.as_mut(),
+                deck_path.as_deref(),
+            );
             widget.ode()?.show_def(def.clone());
             let slot = WidgetSlot {
                 spec: live.spec.clone(),

@@ -216,7 +216,11 @@ fn title_slide_ui(
     ui.add_space(look.scaled(34.0 + 56.0));
     blocks::blocks_ui(ui, &slide.body, &[], bctx, state, Align::Center);
     let who = [
-        (deck.lecturer.as_deref(), theme::SERIF_BOLD, look.palette.title),
+        (
+            deck.lecturer.as_deref(),
+            theme::SERIF_BOLD,
+            look.palette.title,
+        ),
         (deck.date.as_deref(), theme::SERIF, look.palette.dim),
     ];
     if who.iter().any(|(t, ..)| t.is_some()) {

@@ -25,7 +25,11 @@ fn column_widths(ui: &egui::Ui, cells: &[&[String]], width: f32, look: &Look) ->
             cells
                 .iter()
                 .filter_map(|r| r.get(c))
-                .map(|t| paragraph_galley(ui, t, f32::INFINITY, look, Align::Min).size().x)
+                .map(|t| {
+                    paragraph_galley(ui, t, f32::INFINITY, look, Align::Min)
+                        .size()
+                        .x
+                })
                 .fold(0.0, f32::max)
                 + 2.0 * look.scaled(CELL_PAD_X)
         })

@@ -37,7 +37,10 @@ pub(crate) fn widget_style(base: &egui::Style, look: &Look, theme: Theme) -> egu
         (TextStyle::Small, text(size::WIDGET_TEXT, serif.clone())),
         (TextStyle::Body, text(size::WIDGET_TEXT, serif.clone())),
         (TextStyle::Button, text(size::WIDGET_TEXT, serif.clone())),
-        (TextStyle::Heading, text(size::WIDGET_TEXT * 1.4, serif.clone())),
+        (
+            TextStyle::Heading,
+            text(size::WIDGET_TEXT * 1.4, serif.clone()),
+        ),
         (TextStyle::Monospace, text(size::WIDGET_TEXT, serif.clone())),
     ]
     .into();

@@ -311,7 +311,10 @@ impl Walk<'_> {
             }
             let problems = crate::render::check_shader_file(&path);
             if !problems.is_empty() {
-                broken.push(format!("{name} has {} problem(s), listed at the shader", problems.len()));
+                broken.push(format!(
+                    "{name} has {} problem(s), listed at the shader",
+                    problems.len()
+                ));
                 self.problems.extend(problems);
             }
         }

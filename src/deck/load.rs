@@ -3,8 +3,8 @@
 use std::collections::HashMap;
 use std::path::Path;
 
-use super::widgets::{OdeSource, WidgetSpec};
 use super::broken::{blank_broken_slides, error_slide, ron_options};
+use super::widgets::{OdeSource, WidgetSpec};
 use super::{Deck, WidgetProblem, block_tree_path};
 use crate::diag::Diagnostic;
 use crate::ron_tree;
@@ -217,8 +217,16 @@ mod tests {
         let b: Vec<_> = deck.broken_slides.iter().map(|b| &b.diagnostic).collect();
         assert_eq!(b.len(), 2);
         assert_eq!((b[0].line, b[0].col), (4, 13), "{}", b[0]);
-        assert!(b[0].message.contains("did you mean `SlopeField`?"), "{}", b[0]);
-        assert!(b[0].message.starts_with("slide 2 does not load"), "{}", b[0]);
+        assert!(
+            b[0].message.contains("did you mean `SlopeField`?"),
+            "{}",
+            b[0]
+        );
+        assert!(
+            b[0].message.starts_with("slide 2 does not load"),
+            "{}",
+            b[0]
+        );
         assert_eq!(b[1].line, 5, "{}", b[1]);
         assert!(b[1].message.contains("did you mean `latex`?"), "{}", b[1]);
         // the error slide says it, with the place

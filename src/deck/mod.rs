@@ -16,8 +16,8 @@ pub mod write_back;
 pub use ink_file::InkFile;
 pub use load::{load_deck, parse_deck, parse_deck_file};
 pub use model::{
-    Aspect, Block, BookmarkDecl, Controls, Deck, IMAGE_WIDTH_RANGE, Layout, Slide, Theme, WidgetProblem,
-    block_tree_path,
+    Aspect, Block, BookmarkDecl, Controls, Deck, IMAGE_WIDTH_RANGE, Layout, Slide, Theme,
+    WidgetProblem, block_tree_path,
 };
 pub use nav::Nav;
 pub use session::DeckSession;

@@ -99,7 +99,14 @@ impl Implicit {
                 self.res[i] = self.y[i] - x[i] - th * self.f[i];
             }
             if !sys.jacobian(ts, &self.y, &mut self.lu.m) {
-                forward_difference_jacobian(sys, ts, &mut self.y, &self.f, &mut self.fp, &mut self.lu.m);
+                forward_difference_jacobian(
+                    sys,
+                    ts,
+                    &mut self.y,
+                    &self.f,
+                    &mut self.fp,
+                    &mut self.lu.m,
+                );
             }
             for v in self.lu.m.iter_mut() {
                 *v *= -th;

@@ -114,7 +114,12 @@ impl System for VanDerPol {
     }
     fn jacobian(&self, _t: f64, y: &[f64], j: &mut [f64]) -> bool {
         let mu = self.mu;
-        j.copy_from_slice(&[0.0, 1.0, -2.0 * mu * y[0] * y[1] - 1.0, mu * (1.0 - y[0] * y[0])]);
+        j.copy_from_slice(&[
+            0.0,
+            1.0,
+            -2.0 * mu * y[0] * y[1] - 1.0,
+            mu * (1.0 - y[0] * y[0]),
+        ]);
         true
     }
     fn time_derivative(&self, _t: f64, _y: &[f64], d: &mut [f64]) -> bool {
@@ -196,12 +201,18 @@ mod tests {
                 p.rhs(0.0, x, &mut a);
                 native.rhs(0.0, x, &mut b);
                 for (u, v) in a.iter().zip(&b) {
-                    assert!((u - v).abs() <= 1e-15 * u.abs().max(1.0), "{file}: {a:?} vs {b:?}");
+                    assert!(
+                        (u - v).abs() <= 1e-15 * u.abs().max(1.0),
+                        "{file}: {a:?} vs {b:?}"
+                    );
                 }
                 let (mut ja, mut jb) = (vec![0.0; n * n], vec![0.0; n * n]);
                 assert!(p.jacobian(0.0, x, &mut ja) && native.jacobian(0.0, x, &mut jb));
                 for (u, v) in ja.iter().zip(&jb) {
-                    assert!((u - v).abs() <= 1e-15 * u.abs().max(1.0), "{file}: {ja:?} vs {jb:?}");
+                    assert!(
+                        (u - v).abs() <= 1e-15 * u.abs().max(1.0),
+                        "{file}: {ja:?} vs {jb:?}"
+                    );
                 }
             }
         }

@@ -99,7 +99,11 @@ pub fn contour(abs_r: impl Fn(Complex) -> f64, grid: &Grid, vals: &[f64]) -> Vec
     type Edge = (usize, usize, u8);
     let ends = |e: Edge| {
         let (i, j, d) = e;
-        if d == 0 { ((i, j), (i + 1, j)) } else { ((i, j), (i, j + 1)) }
+        if d == 0 {
+            ((i, j), (i + 1, j))
+        } else {
+            ((i, j), (i, j + 1))
+        }
     };
     let crosses = |e: Edge| {
         let ((a, b), (c, d)) = ends(e);
@@ -152,7 +156,11 @@ pub fn contour(abs_r: impl Fn(Complex) -> f64, grid: &Grid, vals: &[f64]) -> Vec
         while let Some(k) = next_from(*chain.last().expect("two edges"), &used) {
             used[k] = true;
             let (p, q) = segs[k];
-            chain.push(if p == *chain.last().expect("non-empty") { q } else { p });
+            chain.push(if p == *chain.last().expect("non-empty") {
+                q
+            } else {
+                p
+            });
         }
         if chain.first() != chain.last() {
             let mut back = Vec::new();
@@ -177,7 +185,11 @@ pub fn contour(abs_r: impl Fn(Complex) -> f64, grid: &Grid, vals: &[f64]) -> Vec
         }
         for _ in 0..48 {
             let mid = ((pin.0 + pout.0) / 2.0, (pin.1 + pout.1) / 2.0);
-            if stable(&abs_r, mid) { pin = mid } else { pout = mid }
+            if stable(&abs_r, mid) {
+                pin = mid
+            } else {
+                pout = mid
+            }
         }
         pin
     };
@@ -265,7 +277,11 @@ mod tests {
         }
         // the whole disc fits: −2 … 0 and ±1
         let (x0, x1, y0, y1) = r.bounds;
-        assert!(x0 <= -2.0 && x1 >= 0.0 && y0 <= -1.0 && y1 >= 1.0, "{:?}", r.bounds);
+        assert!(
+            x0 <= -2.0 && x1 >= 0.0 && y0 <= -1.0 && y1 >= 1.0,
+            "{:?}",
+            r.bounds
+        );
         assert!(x0 > -2.1 && x1 < 0.1, "{:?} fits the disc", r.bounds);
     }
 
@@ -284,7 +300,11 @@ mod tests {
             .into_iter()
             .fold(f64::MAX, f64::min);
         assert!((left + 4.0).abs() < 1e-6, "{left}");
-        assert!(typo.bounds.0 < -4.0 && typo.bounds.0 > -4.2, "{:?}", typo.bounds);
+        assert!(
+            typo.bounds.0 < -4.0 && typo.bounds.0 > -4.2,
+            "{:?}",
+            typo.bounds
+        );
     }
 
     #[test]

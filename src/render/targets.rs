@@ -90,13 +90,7 @@ impl Targets {
             HDR_FORMAT,
             U::RENDER_ATTACHMENT | U::TEXTURE_BINDING | U::COPY_SRC,
         );
-        let depth = texture_2d(
-            device,
-            "depth",
-            size,
-            DEPTH_FORMAT,
-            U::RENDER_ATTACHMENT,
-        );
+        let depth = texture_2d(device, "depth", size, DEPTH_FORMAT, U::RENDER_ATTACHMENT);
         let scene_color = texture_2d(
             device,
             "scene colour",

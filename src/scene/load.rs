@@ -156,7 +156,12 @@ fn validate(s: &Scene) -> Result<(), Invalid> {
         check(
             (1..=MAX_WAVES as u32).contains(&sp.count),
             "water.spectrum.count",
-            || format!("water.spectrum.count = {} must be in 1..={MAX_WAVES}", sp.count),
+            || {
+                format!(
+                    "water.spectrum.count = {} must be in 1..={MAX_WAVES}",
+                    sp.count
+                )
+            },
         )?;
         check(
             in_range(sp.peak_wavelength, 0.1, 1e3),
@@ -187,7 +192,12 @@ fn validate(s: &Scene) -> Result<(), Invalid> {
         check(
             in_range(sp.spread_deg, 0.0, 180.0),
             "water.spectrum.spread_deg",
-            || format!("water.spectrum.spread_deg = {} must be in 0..=180", sp.spread_deg),
+            || {
+                format!(
+                    "water.spectrum.spread_deg = {} must be in 0..=180",
+                    sp.spread_deg
+                )
+            },
         )?;
         check(
             in_range(sp.peak_enhancement, 1.0, 10.0),
@@ -202,7 +212,12 @@ fn validate(s: &Scene) -> Result<(), Invalid> {
         check(
             in_range(sp.steepness, 0.0, 1.0),
             "water.spectrum.steepness",
-            || format!("water.spectrum.steepness = {} must be in 0..=1", sp.steepness),
+            || {
+                format!(
+                    "water.spectrum.steepness = {} must be in 0..=1",
+                    sp.steepness
+                )
+            },
         )?;
     }
     let total_waves = w.waves.len() + w.spectrum.as_ref().map_or(0, |s| s.count as usize);
@@ -464,12 +479,26 @@ fn validate(s: &Scene) -> Result<(), Invalid> {
             )
         },
     )?;
-    check(in_range(f.goal_weight, 0.0, 100.0), "school.goal_weight", || {
-        format!("school.goal_weight = {} must be in 0..=100 per s²", f.goal_weight)
-    })?;
-    check(in_range(f.spawn_radius, 0.0, 1e3), "school.spawn_radius", || {
-        format!("school.spawn_radius = {} must be in 0..=1000 m", f.spawn_radius)
-    })?;
+    check(
+        in_range(f.goal_weight, 0.0, 100.0),
+        "school.goal_weight",
+        || {
+            format!(
+                "school.goal_weight = {} must be in 0..=100 per s²",
+                f.goal_weight
+            )
+        },
+    )?;
+    check(
+        in_range(f.spawn_radius, 0.0, 1e3),
+        "school.spawn_radius",
+        || {
+            format!(
+                "school.spawn_radius = {} must be in 0..=1000 m",
+                f.spawn_radius
+            )
+        },
+    )?;
     let radii = [f.separation_radius, f.neighbour_radius, f.flee_radius];
     check(
         radii.iter().all(|&r| in_range(r, 0.0, 1e3)),

@@ -190,7 +190,11 @@ pub fn transport_step(q_old: Quat, heading_new: Vec3) -> TransportStep {
     } else {
         heading_old.dot(h).clamp(-1.0, 1.0).acos()
     };
-    let axis = if straight { None } else { cross.try_normalize() };
+    let axis = if straight {
+        None
+    } else {
+        cross.try_normalize()
+    };
     let q_rotation = axis.map_or(Quat::IDENTITY, |a| Quat::from_axis_angle(a, angle_rad));
     TransportStep {
         heading_old,

@@ -128,13 +128,7 @@ impl SchoolParams {
         let (sz, cz) = arg(0.8, 2.0).sin_cos();
         let (sy, cy) = arg(1.3, 3.0).sin_cos();
         let pos = mid + reach * Vec3::new(sx as f32, sy as f32, sz as f32);
-        let vel = reach
-            * Vec3::new(
-                cx as f32,
-                (1.3 * cy) as f32,
-                (0.8 * cz) as f32,
-            )
-            * omega as f32;
+        let vel = reach * Vec3::new(cx as f32, (1.3 * cy) as f32, (0.8 * cz) as f32) * omega as f32;
         (pos, vel)
     }
 }

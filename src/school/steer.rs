@@ -150,7 +150,12 @@ pub(super) fn compute(s: &mut School, env: &Environment) {
     }
     let p = &s.params;
     let mut padded = std::mem::take(&mut s.padded);
-    padded.fill(s, p.alignment_weight, p.cohesion_weight, school_spacing_m(s, env));
+    padded.fill(
+        s,
+        p.alignment_weight,
+        p.cohesion_weight,
+        school_spacing_m(s, env),
+    );
     let (lo, hi) = env.swim_box();
     let c = Consts {
         r2: p.neighbour_radius * p.neighbour_radius,
@@ -172,7 +177,9 @@ pub(super) fn compute(s: &mut School, env: &Environment) {
         } else {
             0.0
         },
-        obstacles: std::array::from_fn(|k| env.obstacles.get(k).copied().unwrap_or((Vec3::ZERO, 0.0))),
+        obstacles: std::array::from_fn(|k| {
+            env.obstacles.get(k).copied().unwrap_or((Vec3::ZERO, 0.0))
+        }),
     };
     steer_all(&c, s, &padded);
     s.padded = padded;

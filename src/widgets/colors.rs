@@ -201,8 +201,9 @@ pub fn delta_e_2000(p: [f32; 3], q: [f32; 3]) -> f32 {
         0.5 * (h1p + h2p - 360.0)
     };
     let cos = |deg: f64| deg.to_radians().cos();
-    let t = 1.0 - 0.17 * cos(h_bar - 30.0) + 0.24 * cos(2.0 * h_bar) + 0.32 * cos(3.0 * h_bar + 6.0)
-        - 0.20 * cos(4.0 * h_bar - 63.0);
+    let t =
+        1.0 - 0.17 * cos(h_bar - 30.0) + 0.24 * cos(2.0 * h_bar) + 0.32 * cos(3.0 * h_bar + 6.0)
+            - 0.20 * cos(4.0 * h_bar - 63.0);
     let d_theta = 30.0 * (-((h_bar - 275.0) / 25.0).powi(2)).exp();
     let cp7 = cp_bar.powi(7);
     let r_c = 2.0 * (cp7 / (cp7 + 25f64.powi(7))).sqrt();
@@ -287,10 +288,16 @@ mod tests {
     fn simulated_dichromats_confuse_what_they_should() {
         // red and green, far apart for normal vision, nearly merge for a deuteranope; blue and
         // yellow stay apart for both
-        let (red, green) = (Color32::from_rgb(200, 60, 40), Color32::from_rgb(110, 140, 40));
+        let (red, green) = (
+            Color32::from_rgb(200, 60, 40),
+            Color32::from_rgb(110, 140, 40),
+        );
         assert!(delta_e(red, green, Vision::Normal) > 30.0);
         assert!(delta_e(red, green, Vision::Deuteranopia) < 12.0);
-        let (blue, yellow) = (Color32::from_rgb(0, 90, 200), Color32::from_rgb(230, 200, 40));
+        let (blue, yellow) = (
+            Color32::from_rgb(0, 90, 200),
+            Color32::from_rgb(230, 200, 40),
+        );
         for v in [Vision::Protanopia, Vision::Deuteranopia] {
             assert!(delta_e(blue, yellow, v) > 40.0, "{v:?}");
         }

@@ -85,7 +85,10 @@ pub fn place(
         }
         for far in [1.0, 3.0] {
             for side in sides {
-                candidates.push((rect_at(anchor, side, size, gap * far), far > 1.0 || side != preferred));
+                candidates.push((
+                    rect_at(anchor, side, size, gap * far),
+                    far > 1.0 || side != preferred,
+                ));
             }
         }
         for k in 3..=8 {
@@ -109,7 +112,10 @@ pub fn place(
 
 /// The screen rect a marker of `radius` at data point `at` covers (an obstacle for labels).
 pub fn marker_rect(transform: &PlotTransform, at: PlotPoint, radius: f32) -> Rect {
-    Rect::from_center_size(transform.position_from_point(&at), Vec2::splat(2.0 * radius))
+    Rect::from_center_size(
+        transform.position_from_point(&at),
+        Vec2::splat(2.0 * radius),
+    )
 }
 
 /// Draws `labels` over the plot whose transform is `transform`, placed by [`place`], in the

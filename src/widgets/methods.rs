@@ -142,7 +142,9 @@ impl Path {
             f_evals: sol.f_evals as usize,
             diverged_at: match sol.outcome {
                 Outcome::Finished => None,
-                Outcome::Diverged { t } | Outcome::Failed { t, .. } | Outcome::Stiff { t } => Some(t),
+                Outcome::Diverged { t } | Outcome::Failed { t, .. } | Outcome::Stiff { t } => {
+                    Some(t)
+                }
             },
             ..Default::default()
         };
@@ -317,7 +319,16 @@ mod tests {
     fn a_path_ends_at_t_end_whatever_h() {
         let sys = FnSystem::new(1, |t, _x: &[f64], d: &mut [f64]| d[0] = t.cos());
         for h in [0.7071, 0.5, 3.0, 10.0] {
-            let p = path_to(&sys, Scheme::Method(Method::Rk4), 0.0, &[0.0], h, 8.0, 4000, 1e9);
+            let p = path_to(
+                &sys,
+                Scheme::Method(Method::Rk4),
+                0.0,
+                &[0.0],
+                h,
+                8.0,
+                4000,
+                1e9,
+            );
             assert_eq!(*p.ts.last().unwrap(), 8.0, "h = {h}");
             // every step but the last is h long
             assert!((p.ts[1] - p.ts[0] - h.min(8.0)).abs() < 1e-12, "h = {h}");

@@ -122,8 +122,16 @@ impl Neptune {
         self.methods
             .shown()
             .map(|m| {
-                let path =
-                    path_to(&p, m.method.scheme(), p.t0, &p.initial, h, t_end, 10_000, 1e6);
+                let path = path_to(
+                    &p,
+                    m.method.scheme(),
+                    p.t0,
+                    &p.initial,
+                    h,
+                    t_end,
+                    10_000,
+                    1e6,
+                );
                 (m.method.key.clone(), m.method.name.clone(), m.color, path)
             })
             .collect()
@@ -314,7 +322,11 @@ pub fn lambda_text(l: C) -> String {
     if l.1 == 0.0 {
         format!("λ = {}", style::fmt_signed(l.0))
     } else {
-        format!("λ = {} ± {}i", style::fmt_signed(l.0), style::fmt_signed(l.1.abs()))
+        format!(
+            "λ = {} ± {}i",
+            style::fmt_signed(l.0),
+            style::fmt_signed(l.1.abs())
+        )
     }
 }
 

@@ -156,11 +156,7 @@ fn fish_shapes(
     let tail_r = p(-f * 0.5 - s * 0.28);
     let fin = vec![p(f * 0.25), p(u * 0.6 - f * 0.1), p(-f * 0.35)];
     vec![
-        egui::Shape::convex_polygon(
-            vec![nose, tail_l, tail_r],
-            body,
-            Stroke::new(unit, body),
-        ),
+        egui::Shape::convex_polygon(vec![nose, tail_l, tail_r], body, Stroke::new(unit, body)),
         egui::Shape::convex_polygon(fin, ink, Stroke::NONE),
         egui::Shape::line_segment([p(Vec3::ZERO), p(u * 0.6)], Stroke::new(1.5 * unit, ink)),
     ]
@@ -318,7 +314,8 @@ impl SlideWidget for ParallelTransport {
         let i = self.spec.step;
         // the five readout lines below the views, with their spacing: they must end above the
         // slot's bottom (the footer), not under it
-        let line_h = ui.text_style_height(&egui::TextStyle::Monospace) + ui.spacing().item_spacing.y;
+        let line_h =
+            ui.text_style_height(&egui::TextStyle::Monospace) + ui.spacing().item_spacing.y;
         let text_h = 5.0 * line_h + ui.spacing().item_spacing.y;
         let avail = ui.available_rect_before_wrap();
         let views_h = (avail.height() - text_h).max(80.0);

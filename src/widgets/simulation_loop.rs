@@ -257,7 +257,10 @@ fn loop_ui(ui: &mut egui::Ui, n: &LoopNumbers, steps: u64) {
     let title_color = style::text_color(ui, accent);
     let avail = ui.available_rect_before_wrap();
     let u = style::unit(ui);
-    let rect = Rect::from_min_size(avail.min, vec2(avail.width(), avail.height().max(200.0 * u)));
+    let rect = Rect::from_min_size(
+        avail.min,
+        vec2(avail.width(), avail.height().max(200.0 * u)),
+    );
     ui.allocate_rect(rect, egui::Sense::hover());
     let painter = ui.painter_at(rect);
     let title_font = egui::TextStyle::Body.resolve(ui.style());
@@ -398,7 +401,11 @@ impl SlideWidget for SimulationLoop {
         }
         for r in 0..3 {
             for (c, value) in n.inv_inertia_world.row(r).to_array().iter().enumerate() {
-                v.push(Readout::new("inv_inertia_world", format!("r{r}c{c}"), *value));
+                v.push(Readout::new(
+                    "inv_inertia_world",
+                    format!("r{r}c{c}"),
+                    *value,
+                ));
             }
         }
         v

@@ -395,7 +395,10 @@ impl SlideWidget for SlopeField {
         let is_phase = phase.is_some();
         // Free by default: the plot fills its slot and shows exactly `view` (a t–x plot, or a
         // phase plane of mixed units); Equal on request for geometry.
-        let aspect = self.spec.aspect.unwrap_or(crate::deck::widgets::Aspect::Free);
+        let aspect = self
+            .spec
+            .aspect
+            .unwrap_or(crate::deck::widgets::Aspect::Free);
         let plot = style::with_aspect(style::plot(ui, "slope-field", &x_name), aspect)
             .default_x_bounds(x0, x1)
             .default_y_bounds(y0, y1);
@@ -584,8 +587,15 @@ mod tests {
         // of √(1 + Δt²) over the steps
         let euler = paths[0].path.last();
         let ts = &paths[0].path.ts;
-        assert_eq!(*ts.last().unwrap(), 6.283185307179586, "the path ends at t_end");
-        let want: f64 = ts.windows(2).map(|w| (1.0 + (w[1] - w[0]).powi(2)).sqrt()).product();
+        assert_eq!(
+            *ts.last().unwrap(),
+            6.283185307179586,
+            "the path ends at t_end"
+        );
+        let want: f64 = ts
+            .windows(2)
+            .map(|w| (1.0 + (w[1] - w[0]).powi(2)).sqrt())
+            .product();
         let r = euler[0].hypot(euler[1]);
         assert!((r - want).abs() < 1e-9, "{r} vs {want}");
         assert!((want / 1.01f64.powf(31.0) - 1.0).abs() < 1e-2);

@@ -186,13 +186,17 @@ impl SlideWidget for Spiral {
         let spacing = ui.spacing().item_spacing.x;
         let w = ((ui.available_width() - spacing * (n - 1.0)) / n).max(50.0 * u);
         // below each plot: its name and its radii, two text lines
-        let text_h = 2.0 * (ui.text_style_height(&egui::TextStyle::Body) + ui.spacing().item_spacing.y)
+        let text_h = 2.0
+            * (ui.text_style_height(&egui::TextStyle::Body) + ui.spacing().item_spacing.y)
             + 2.0 * ui.spacing().item_spacing.y;
         let plot_h = (ui.available_height() - text_h).max(80.0 * u);
         let side = w.min(plot_h);
         // one range for every panel, so the three can be compared: the widest spiral's
         let lim = data.iter().map(|p| p.lim).fold(0.0, f64::max);
-        let aspect = self.spec.aspect.unwrap_or(crate::deck::widgets::Aspect::Equal);
+        let aspect = self
+            .spec
+            .aspect
+            .unwrap_or(crate::deck::widgets::Aspect::Equal);
         ui.horizontal_top(|ui| {
             for panel in data {
                 let (name, end) = (&panel.name, panel.end);
@@ -225,9 +229,7 @@ impl SlideWidget for Spiral {
                                 Line::new("exact", circle)
                                     .color(ink)
                                     .width(style::REFERENCE_WIDTH * u)
-                                    .style(egui_plot::LineStyle::Dashed {
-                                        length: 14.0 * u,
-                                    }),
+                                    .style(egui_plot::LineStyle::Dashed { length: 14.0 * u }),
                             );
                         });
                     ui.colored_label(

@@ -87,9 +87,18 @@ pub struct Stability {
 fn slug(name: &str) -> String {
     let s: String = name
         .chars()
-        .map(|c| if c.is_alphanumeric() { c.to_ascii_lowercase() } else { '-' })
+        .map(|c| {
+            if c.is_alphanumeric() {
+                c.to_ascii_lowercase()
+            } else {
+                '-'
+            }
+        })
         .collect();
-    s.split('-').filter(|p| !p.is_empty()).collect::<Vec<_>>().join("-")
+    s.split('-')
+        .filter(|p| !p.is_empty())
+        .collect::<Vec<_>>()
+        .join("-")
 }
 
 impl Stability {
@@ -281,9 +290,11 @@ fn fitted_bounds(regions: &[MethodRegion]) -> Bounds {
     } else {
         bounded.iter().map(|r| r.bounds).collect()
     };
-    let b = chosen.into_iter().fold((0.0_f64, 0.0_f64, 0.0_f64, 0.0_f64), |a, b| {
-        (a.0.min(b.0), a.1.max(b.1), a.2.min(b.2), a.3.max(b.3))
-    });
+    let b = chosen
+        .into_iter()
+        .fold((0.0_f64, 0.0_f64, 0.0_f64, 0.0_f64), |a, b| {
+            (a.0.min(b.0), a.1.max(b.1), a.2.min(b.2), a.3.max(b.3))
+        });
     stability_region::pad_symmetric(b, 0.1)
 }
 
@@ -411,7 +422,11 @@ impl SlideWidget for Stability {
         let mut out = String::from("series,re,im\n");
         for m in &g.regions {
             for (k, line) in m.region.iter().flat_map(|r| &r.boundary).enumerate() {
-                let series = if k == 0 { m.key.clone() } else { format!("{}.{}", m.key, k + 1) };
+                let series = if k == 0 {
+                    m.key.clone()
+                } else {
+                    format!("{}.{}", m.key, k + 1)
+                };
                 for z in line {
                     let _ = writeln!(out, "{series},{:?},{:?}", z.0, z.1);
                 }
@@ -449,7 +464,10 @@ impl SlideWidget for Stability {
     }
 
     fn colours(&self) -> Vec<(String, egui::Color32)> {
-        self.entries().into_iter().map(|(n, _, c, _)| (n, c)).collect()
+        self.entries()
+            .into_iter()
+            .map(|(n, _, c, _)| (n, c))
+            .collect()
     }
 }
 
@@ -531,8 +549,16 @@ mod tests {
         let img = w.fill(&g);
         let (x0, x1, y0, y1) = g.bounds;
         // fitted to Euler's disc: −2 … 0 and ±1, padded by a tenth
-        assert!(x0 < -2.0 && x0 > -2.4 && x1 > 0.0 && x1 < 0.4, "{:?}", g.bounds);
-        assert!((y0 + y1).abs() < 1e-12 && y1 > 1.0 && y1 < 1.5, "{:?}", g.bounds);
+        assert!(
+            x0 < -2.0 && x0 > -2.4 && x1 > 0.0 && x1 < 0.4,
+            "{:?}",
+            g.bounds
+        );
+        assert!(
+            (y0 + y1).abs() < 1e-12 && y1 > 1.0 && y1 < 1.5,
+            "{:?}",
+            g.bounds
+        );
         let px = |re: f64, im: f64| {
             let i = ((re - x0) / (x1 - x0) * (RES - 1) as f64).round() as usize;
             let j = ((y1 - im) / (y1 - y0) * (RES - 1) as f64).round() as usize;

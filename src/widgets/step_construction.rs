@@ -187,10 +187,14 @@ impl StepConstruction {
 
 impl SlideWidget for StepConstruction {
     fn colours(&self) -> Vec<(String, egui::Color32)> {
-        [Construction::Euler, Construction::Midpoint, Construction::Rk4]
-            .into_iter()
-            .map(|c| (c.name().to_owned(), style::method_color(c.method())))
-            .collect()
+        [
+            Construction::Euler,
+            Construction::Midpoint,
+            Construction::Rk4,
+        ]
+        .into_iter()
+        .map(|c| (c.name().to_owned(), style::method_color(c.method())))
+        .collect()
     }
 
     fn ui(&mut self, ui: &mut egui::Ui) {
@@ -225,7 +229,11 @@ impl SlideWidget for StepConstruction {
                 if !style::controls_shown(ui) {
                     // the audience sees which method is built, not the switch
                     if m == c {
-                        ui.label(egui::RichText::new(c.name()).color(style::text_color(ui, style::method_color(c.method()))).strong());
+                        ui.label(
+                            egui::RichText::new(c.name())
+                                .color(style::text_color(ui, style::method_color(c.method())))
+                                .strong(),
+                        );
                     }
                     continue;
                 }

@@ -72,7 +72,9 @@ pub fn unit(ui: &egui::Ui) -> f32 {
 pub fn unit_of(style: &egui::Style) -> f32 {
     style
         .text_styles
-        .get(&egui::TextStyle::Name(crate::app::theme::CANVAS_STYLE.into()))
+        .get(&egui::TextStyle::Name(
+            crate::app::theme::CANVAS_STYLE.into(),
+        ))
         .map_or(1.0, |f| f.size / crate::app::theme::size::WIDGET_TEXT)
 }
 
@@ -318,7 +320,11 @@ pub fn fmt_signed(x: f64) -> String {
     }
     let s = format!("{:.3}", x.abs());
     let s = s.trim_end_matches('0').trim_end_matches('.');
-    if x < 0.0 && s != "0" { format!("−{s}") } else { s.to_string() }
+    if x < 0.0 && s != "0" {
+        format!("−{s}")
+    } else {
+        s.to_string()
+    }
 }
 
 /// What keeps a widget from drawing all it should (its equation did not load, a tableau file
@@ -456,7 +462,11 @@ mod contrast_tests {
             SYMPLECTIC_EULER,
         ]
         .into_iter()
-        .chain(colors::all_roles().into_iter().map(|r| colors::hue_of(r).color))
+        .chain(
+            colors::all_roles()
+                .into_iter()
+                .map(|r| colors::hue_of(r).color),
+        )
         .collect::<Vec<_>>();
         let mut changed = 0;
         for bg in backgrounds {

@@ -300,7 +300,11 @@ impl SlideWidget for WorkPrecision {
                     .x_axis_formatter(|m, _| pow10_label(-m.value))
                     .y_axis_formatter(|m, _| {
                         let v = 10f64.powf(m.value).round();
-                        if v >= 1.0 { format!("{v}×") } else { String::new() }
+                        if v >= 1.0 {
+                            format!("{v}×")
+                        } else {
+                            String::new()
+                        }
                     })
                     .include_y(0.0)
                     .show(ui, |p| {

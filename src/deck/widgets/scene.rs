@@ -155,7 +155,12 @@ impl SceneSpec {
             "camera distance (m)",
         );
         for (k, v) in self.camera.target.iter().flatten().enumerate() {
-            check(&format!("camera.target[{k}]"), Some(*v), TARGET_RANGE_M, "camera target (m)");
+            check(
+                &format!("camera.target[{k}]"),
+                Some(*v),
+                TARGET_RANGE_M,
+                "camera target (m)",
+            );
         }
         check("time_s", Some(self.time_s), TIME_RANGE_S, "time_s");
         check("height", Some(self.height), HEIGHT_RANGE, "height");

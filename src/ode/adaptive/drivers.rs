@@ -45,12 +45,26 @@ pub fn solve_embedded<S: System + ?Sized>(
         Method::Rodas5p => {
             let mut trial = RodasTrial::new(sys, x0);
             // RODAS's controller: exponent 1/5 for the order-4 embedded estimate
-            recorded(&mut trial, t0, t_end, &opts, Controller::predictive(5, 6.0, 1.0), sol)
+            recorded(
+                &mut trial,
+                t0,
+                t_end,
+                &opts,
+                Controller::predictive(5, 6.0, 1.0),
+                sol,
+            )
         }
         Method::Radau5 => {
             let mut trial = RadauTrial::new(sys, x0);
             // radau5.f: err^(1/4), ratio in [1/5, 8], steps kept within 1 … 1.2
-            recorded(&mut trial, t0, t_end, &opts, Controller::predictive(4, 8.0, 1.2), sol)
+            recorded(
+                &mut trial,
+                t0,
+                t_end,
+                &opts,
+                Controller::predictive(4, 8.0, 1.2),
+                sol,
+            )
         }
         _ => with_pair!(
             method,

@@ -143,13 +143,11 @@ impl<S: System + ?Sized> Trial for RodasTrial<'_, S> {
         if self.bad_jacobian {
             Some("the Jacobian or ∂f/∂t has NaN or ∞ at this state".into())
         } else {
-            (self.singular_run >= MAX_SINGULAR).then(|| {
-                format!("the matrix I/(γh) − J was singular {MAX_SINGULAR} times running")
-            })
+            (self.singular_run >= MAX_SINGULAR)
+                .then(|| format!("the matrix I/(γh) − J was singular {MAX_SINGULAR} times running"))
         }
     }
 }
-
 
 pub(crate) struct RadauTrial<'a, S: ?Sized> {
     sys: Counted<'a, S>,

@@ -281,7 +281,9 @@ mod tests {
             ("tan(x)", |x| 1.0 / (x.cos() * x.cos())),
             ("atan2(x, 2)", |x| 2.0 / (4.0 + x * x)),
             ("abs(x - 1) + max(x, 0.5) + min(x, 0.5)", |x| {
-                (x - 1.0).signum() + if x >= 0.5 { 1.0 } else { 0.0 } + if x <= 0.5 { 1.0 } else { 0.0 }
+                (x - 1.0).signum()
+                    + if x >= 0.5 { 1.0 } else { 0.0 }
+                    + if x <= 0.5 { 1.0 } else { 0.0 }
             }),
         ];
         for (src, d) in cases {
@@ -290,7 +292,12 @@ mod tests {
             for x in [0.3, 0.7, 1.9] {
                 let mut out = [0.0];
                 j.eval(0.0, &[x], &mut out);
-                assert!((out[0] - d(x)).abs() < 1e-14 * (1.0 + d(x).abs()), "{src} at {x}: {} vs {}", out[0], d(x));
+                assert!(
+                    (out[0] - d(x)).abs() < 1e-14 * (1.0 + d(x).abs()),
+                    "{src} at {x}: {} vs {}",
+                    out[0],
+                    d(x)
+                );
             }
         }
     }

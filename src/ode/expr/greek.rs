@@ -67,7 +67,9 @@ pub fn alias(name: &str) -> Option<String> {
 /// A suffix that does not make a longer word of the letter's name (`eta` in `etal`): empty,
 /// or digits and underscores first.
 fn suffix_ok(rest: &str) -> bool {
-    rest.chars().next().is_none_or(|c| c.is_ascii_digit() || c == '_')
+    rest.chars()
+        .next()
+        .is_none_or(|c| c.is_ascii_digit() || c == '_')
 }
 
 #[cfg(test)]

@@ -90,10 +90,30 @@ mod tests {
             ("sin + 1", 0, "sin", "needs arguments"),
             ("(x))", 3, ")", "after a complete"),
             ("* x", 0, "*", "expected a number"),
-            ("x*(", 3, "end of expression", "expected `)` to close the `(` at column 3"),
-            ("sin(", 4, "end of expression", "expected `)` to close the `(` at column 4"),
-            ("(x + (v)", 8, "end of expression", "expected `)` to close the `(` at column 1"),
-            ("sinn(x)", 0, "sinn", "unknown function `sinn`; did you mean `sin`?"),
+            (
+                "x*(",
+                3,
+                "end of expression",
+                "expected `)` to close the `(` at column 3",
+            ),
+            (
+                "sin(",
+                4,
+                "end of expression",
+                "expected `)` to close the `(` at column 4",
+            ),
+            (
+                "(x + (v)",
+                8,
+                "end of expression",
+                "expected `)` to close the `(` at column 1",
+            ),
+            (
+                "sinn(x)",
+                0,
+                "sinn",
+                "unknown function `sinn`; did you mean `sin`?",
+            ),
             ("vv + x", 0, "vv", "unknown name `vv`; did you mean `v`?"),
         ];
         for (src, offset, token, msg) in cases {

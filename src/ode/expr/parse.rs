@@ -267,7 +267,10 @@ impl Parser<'_> {
         if self.eat(')') {
             return Ok(());
         }
-        Err(self.error(&format!("expected `)` to close the `(` at column {}", at + 1)))
+        Err(self.error(&format!(
+            "expected `)` to close the `(` at column {}",
+            at + 1
+        )))
     }
 
     fn expect(&mut self, c: char) -> Result<(), ExprError> {

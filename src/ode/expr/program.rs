@@ -68,10 +68,24 @@ impl Instr {
         use Instr::*;
         match *self {
             Const(_) => ([0; 4], 0),
-            Neg(a) | PowI(a, _) | Sin(a) | Cos(a) | Tan(a) | Exp(a) | Ln(a) | Sqrt(a)
-            | Abs(a) | Sign(a) => ([a, 0, 0, 0], 1),
-            Add(a, b) | Sub(a, b) | Mul(a, b) | Div(a, b) | Pow(a, b) | Atan2(a, b)
-            | Min(a, b) | Max(a, b) => ([a, b, 0, 0], 2),
+            Neg(a)
+            | PowI(a, _)
+            | Sin(a)
+            | Cos(a)
+            | Tan(a)
+            | Exp(a)
+            | Ln(a)
+            | Sqrt(a)
+            | Abs(a)
+            | Sign(a) => ([a, 0, 0, 0], 1),
+            Add(a, b)
+            | Sub(a, b)
+            | Mul(a, b)
+            | Div(a, b)
+            | Pow(a, b)
+            | Atan2(a, b)
+            | Min(a, b)
+            | Max(a, b) => ([a, b, 0, 0], 2),
             PickLe(a, b, x, y) => ([a, b, x, y], 4),
         }
     }

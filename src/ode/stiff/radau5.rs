@@ -88,9 +88,14 @@ impl RadauTol {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Attempt {
     /// Newton converged: the scaled error estimate (≥ 1e-10) and the iterations it took
-    Converged { err: f64, newton_iterations: usize },
+    Converged {
+        err: f64,
+        newton_iterations: usize,
+    },
     /// Newton diverged or converged too slowly: retry with h times this factor
-    Retry { factor: f64 },
+    Retry {
+        factor: f64,
+    },
     Singular,
     /// the Jacobian at the state has a NaN or ∞
     JacobianNotFinite,
@@ -230,9 +235,8 @@ impl Radau5 {
                     self.z[k][i] = cq[k] * (a1 + (cq[k] - C2M1) * (a2 + (cq[k] - C1M1) * a3));
                 }
                 for k in 0..3 {
-                    self.w[k][i] = TI[k][0] * self.z[0][i]
-                        + TI[k][1] * self.z[1][i]
-                        + TI[k][2] * self.z[2][i];
+                    self.w[k][i] =
+                        TI[k][0] * self.z[0][i] + TI[k][1] * self.z[1][i] + TI[k][2] * self.z[2][i];
                 }
             }
         }
@@ -292,7 +296,11 @@ impl Radau5 {
             }
             if newt > 1 && newt < NIT {
                 let thq = dyno / dynold;
-                self.theta = if newt == 2 { thq } else { (thq * thqold).sqrt() };
+                self.theta = if newt == 2 {
+                    thq
+                } else {
+                    (thq * thqold).sqrt()
+                };
                 thqold = thq;
                 if self.theta < 0.99 {
                     self.faccon = self.theta / (1.0 - self.theta);
@@ -462,8 +470,16 @@ mod tests {
     fn transformation_diagonalises_the_inverse_of_a() {
         let s6 = 6f64.sqrt();
         let a = [
-            [(88.0 - 7.0 * s6) / 360.0, (296.0 - 169.0 * s6) / 1800.0, (-2.0 + 3.0 * s6) / 225.0],
-            [(296.0 + 169.0 * s6) / 1800.0, (88.0 + 7.0 * s6) / 360.0, (-2.0 - 3.0 * s6) / 225.0],
+            [
+                (88.0 - 7.0 * s6) / 360.0,
+                (296.0 - 169.0 * s6) / 1800.0,
+                (-2.0 + 3.0 * s6) / 225.0,
+            ],
+            [
+                (296.0 + 169.0 * s6) / 1800.0,
+                (88.0 + 7.0 * s6) / 360.0,
+                (-2.0 - 3.0 * s6) / 225.0,
+            ],
             [(16.0 - s6) / 36.0, (16.0 + s6) / 36.0, 1.0 / 9.0],
         ];
         let mul = |x: &[[f64; 3]; 3], y: &[[f64; 3]; 3]| {

@@ -147,14 +147,9 @@ impl SceneGpu {
                 let started = std::time::Instant::now();
                 let shader_dir = crate::bundled::shader_folder_for_scene(scene_path)?.dir;
                 let rs = &self.render_state;
-                let renderer = Renderer::new(
-                    &rs.device,
-                    &rs.queue,
-                    &shader_dir,
-                    scene,
-                    OUTPUT_FORMAT,
-                )
-                .map_err(|e| format!("the scene renderer could not start: {e:#}"))?;
+                let renderer =
+                    Renderer::new(&rs.device, &rs.queue, &shader_dir, scene, OUTPUT_FORMAT)
+                        .map_err(|e| format!("the scene renderer could not start: {e:#}"))?;
                 tracing::debug!("scene renderer for slides made in {:?}", started.elapsed());
                 let watcher = self.watch_files.then(|| {
                     let ctx = self.ctx.clone();

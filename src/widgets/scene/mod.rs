@@ -21,8 +21,7 @@ pub use gpu::SceneGpu;
 use super::{Param, SlideWidget, style};
 use crate::deck::widgets::scene::{
     DISTANCE_RANGE_M, PITCH_RANGE_DEG, SceneSpec, SceneToggles, SceneView, TARGET_RANGE_M,
-    TIME_RANGE_S,
-    YAW_RANGE_DEG,
+    TIME_RANGE_S, YAW_RANGE_DEG,
 };
 use crate::render::{DebugView, RenderSettings};
 use crate::scene::SceneSim;

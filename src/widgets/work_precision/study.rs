@@ -223,7 +223,12 @@ pub(super) mod tests {
             adaptive: false,
             samples: pts
                 .iter()
-                .map(|&(secs, error)| Sample { h_or_tol: 1.0, f_evals: 1, secs, error })
+                .map(|&(secs, error)| Sample {
+                    h_or_tol: 1.0,
+                    f_evals: 1,
+                    secs,
+                    error,
+                })
                 .collect(),
         };
         let low = curve(&[(1.0, 1e-2), (100.0, 1e-4)]);
