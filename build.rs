@@ -33,9 +33,18 @@ fn table(code: &mut String, name: &str, dir: &Path, only_ext: Option<&str>) {
             continue;
         }
         println!("cargo:rerun-if-changed={}", f.display());
-        let rel = f.strip_prefix(dir).unwrap().to_string_lossy().replace('\\', "/");
+        let rel = f
+            .strip_prefix(dir)
+            .unwrap()
+            .to_string_lossy()
+            .replace('\\', "/");
         let abs = f.canonicalize().unwrap();
-        writeln!(code, "    ({rel:?}, include_bytes!({:?})),", abs.display().to_string()).unwrap();
+        writeln!(
+            code,
+            "    ({rel:?}, include_bytes!({:?})),",
+            abs.display().to_string()
+        )
+        .unwrap();
     }
     writeln!(code, "];").unwrap();
 }
