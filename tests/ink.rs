@@ -427,7 +427,8 @@ fn presenter_now_rect() -> egui::Rect {
     let left = egui::Rect::from_min_size(area.min, egui::vec2(left_w - pad * 0.5, area.height()));
     let text = (full.height() / 40.0).clamp(12.0, 26.0);
     let ratio = 16.0 / 9.0;
-    let now_h = (left.width() / ratio).min(left.height() * 0.68);
+    // the slide drawn on has live widgets: half the height is left to their controls
+    let now_h = (left.width() / ratio).min(left.height() * 0.5);
     egui::Rect::from_min_size(
         left.min + egui::vec2(0.0, text * 1.5),
         egui::vec2(now_h * ratio, now_h),
