@@ -174,7 +174,14 @@ fn export_data_csv_equals_hand_written_loops() {
     let (_dir, out, files) = exported(&format!(
         "Widget(SlopeField(({FORCED_INLINE}, start: (0.3, 1.1), h: 0.37, t_end: 5.0)))"
     ));
-    assert_eq!(files, vec![out.join("slide-01-w1.csv")]);
+    // the points, and beside them the values the slide's readouts print
+    assert_eq!(
+        files,
+        vec![
+            out.join("slide-01-w1.csv"),
+            out.join("slide-01-w1-readouts.csv")
+        ]
+    );
     let text = std::fs::read_to_string(&files[0]).unwrap();
     assert!(text.starts_with("series,t,x\n"), "{text}");
     let rows = parse_csv(&text);
@@ -205,7 +212,13 @@ fn export_data_and_check_handle_the_adaptive_pairs() {
     let names: Vec<_> = files.iter().map(|f| f.file_name().unwrap()).collect();
     assert_eq!(
         names,
-        ["slide-01-w1.csv", "slide-01-w2.csv", "slide-01-w3.csv"]
+        [
+            "slide-01-w1.csv",
+            "slide-01-w1-readouts.csv",
+            "slide-01-w2.csv",
+            "slide-01-w2-readouts.csv",
+            "slide-01-w3.csv"
+        ]
     );
     let text = |i: usize| std::fs::read_to_string(&files[i]).unwrap();
     // the slope field steps DOP853's and Vern9's eighth- and ninth-order formulas at h = 0.5
@@ -218,7 +231,7 @@ fn export_data_and_check_handle_the_adaptive_pairs() {
         assert!((last.2[0] - exact(last.1)).abs() < tol, "{key}: {last:?}");
     }
     // convergence: one row per halving, by key
-    let conv = text(1);
+    let conv = text(2);
     assert!(conv.starts_with("series,h,error\n"), "{conv}");
     let dop: Vec<(f64, f64)> = conv
         .lines()
@@ -236,7 +249,7 @@ fn export_data_and_check_handle_the_adaptive_pairs() {
     let ratio = dop[0].1 / dop[1].1;
     assert!((100.0..1000.0).contains(&ratio), "{dop:?}");
     // work-precision: RK4 by step, Vern9 by tolerance, twelve of them
-    let wp = text(2);
+    let wp = text(4);
     assert!(
         wp.starts_with("series,sweep,h_or_tol,f_evals,error\n"),
         "{wp}"
