@@ -12,8 +12,8 @@ use egui_kittest::Harness;
 use glam::{DMat3, DQuat, DVec3, Quat, Vec3};
 use lectern::app::{SlideState, slide_ui};
 use lectern::deck::{Deck, load_deck};
-use lectern::widgets::Readout;
 use lectern::widgets::style::fmt_num;
+use lectern::widgets::{Readout, WidgetSpec};
 
 fn lecture() -> Deck {
     load_deck(&Path::new(env!("CARGO_MANIFEST_DIR")).join("slides/lecture.ron")).unwrap()
@@ -79,6 +79,17 @@ impl Shown {
             self.text
         );
     }
+}
+
+/// The spec of the first widget on the lecture's slide `id`, as the deck writes it.
+fn first_widget(id: &str) -> WidgetSpec {
+    let deck = lecture();
+    let (_, spec) = deck.slides[deck.find(id).unwrap()]
+        .widgets()
+        .into_iter()
+        .next()
+        .unwrap();
+    spec.clone()
 }
 
 fn collect_text(shape: &egui::epaint::Shape, out: &mut String) {
@@ -220,12 +231,7 @@ fn the_spirals_radii_are_printed_and_right() {
 #[test]
 fn the_taylor_errors_are_printed_and_right() {
     let s = Shown::of("taylor");
-    let deck = lecture();
-    let Some((_, lectern::widgets::WidgetSpec::Taylor(spec))) = deck.slides
-        [deck.find("taylor").unwrap()]
-    .widgets()
-    .into_iter()
-    .next() else {
+    let WidgetSpec::Taylor(spec) = first_widget("taylor") else {
         panic!("the Taylor slide's widget");
     };
     let (a, t) = (spec.a, s.get("t", ""));
@@ -265,12 +271,7 @@ fn the_taylor_errors_are_printed_and_right() {
 #[test]
 fn the_rigid_body_numbers_are_printed_and_right() {
     let s = Shown::of("inertia");
-    let deck = lecture();
-    let Some((_, lectern::widgets::WidgetSpec::RigidBody(spec))) = deck.slides
-        [deck.find("inertia").unwrap()]
-    .widgets()
-    .into_iter()
-    .next() else {
+    let WidgetSpec::RigidBody(spec) = first_widget("inertia") else {
         panic!("the rigid-body slide's widget");
     };
     let i_body = DVec3::new(spec.inertia.0, spec.inertia.1, spec.inertia.2);
