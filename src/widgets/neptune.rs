@@ -24,9 +24,24 @@ const CLAMP: f64 = 2.5;
 
 /// A path clipped to |y| ≤ clamp: the visible points and, if it left, where.
 pub fn clip(path: &Path, clamp: f64) -> (Vec<[f64; 2]>, Option<[f64; 2]>) {
-    let mut pts: Vec<[f64; 2]> = Vec::with_capacity(path.ts.len());
-    for (t, x) in path.ts.iter().zip(&path.xs) {
-        let y = x[0];
+    let pts: Vec<[f64; 2]> = path
+        .ts
+        .iter()
+        .zip(&path.xs)
+        .map(|(t, x)| [*t, x[0]])
+        .collect();
+    clip_points(&pts, path.diverged_at, clamp)
+}
+
+/// Points (t, y) clipped to |y| ≤ clamp: the visible ones and, if the curve left (or its run
+/// diverged at `diverged_at`), where, on the clamp line.
+pub fn clip_points(
+    points: &[[f64; 2]],
+    diverged_at: Option<f64>,
+    clamp: f64,
+) -> (Vec<[f64; 2]>, Option<[f64; 2]>) {
+    let mut pts: Vec<[f64; 2]> = Vec::with_capacity(points.len());
+    for &[t, y] in points {
         if y.abs() > clamp {
             if let Some(&[tp, yp]) = pts.last() {
                 // cut the segment where it crosses the clamp line
@@ -36,15 +51,13 @@ pub fn clip(path: &Path, clamp: f64) -> (Vec<[f64; 2]>, Option<[f64; 2]>) {
                 pts.push(exit);
                 return (pts, Some(exit));
             }
-            return (pts, Some([*t, clamp * y.signum()]));
+            return (pts, Some([t, clamp * y.signum()]));
         }
-        pts.push([*t, y]);
+        pts.push([t, y]);
     }
-    let exit = path.diverged_at.map(|t| {
-        [
-            t,
-            clamp * path.last().first().copied().unwrap_or(1.0).signum(),
-        ]
+    let exit = diverged_at.map(|t| {
+        let last = points.last().map_or(1.0, |p| p[1]);
+        [t, clamp * if last < 0.0 { -1.0 } else { 1.0 }]
     });
     (pts, exit)
 }

@@ -354,11 +354,12 @@ impl SlideWidget for WorkPrecision {
     /// `series,sweep,h_or_tol,f_evals,error`: every run, series by method key (`rk5` for the
     /// fixed-step fifth-order weights), `sweep` `h` or `tol`. Wall time is left out: it is the
     /// machine's, not the method's (and a modelled one in headless exports).
-    /// Each curve's best error, as the caption prints it.
-    /// An explicit pair that its stiffness test stopped at every tolerance reads
-    /// `stiff_at` (the earliest such t) instead.
+    /// Each curve's best error, as the caption prints it, from the whole study (not what
+    /// the background thread has sent so far: export asks before any frame is drawn). An
+    /// explicit pair that its stiffness test stopped at every tolerance reads `stiff_at`
+    /// (the earliest such t) instead.
     fn readouts(&mut self) -> Vec<super::Readout> {
-        self.results
+        self.compute()
             .iter()
             .map(|c| match c.stiff_at() {
                 Some(t) => super::Readout::new("stiff_at", c.key.clone(), t),
