@@ -480,3 +480,39 @@ fn the_transport_step_is_printed_and_right() {
     assert!(s.has("axis_x", ""), "step 12 turns");
     check_transport_step(&s);
 }
+
+/// Slide 28: each method's steps and f-evaluations are printed as the readouts say, and they
+/// are right for the fixed-step methods (Euler 1 f and RK4 4 f per step; implicit Euler and
+/// midpoint take t_end / h steps), the exploding ones say where, and the adaptive one is marked.
+#[test]
+fn the_stiff_slides_work_is_printed_and_right() {
+    let s = Shown::of("stiff");
+    let h = s.get("h", "");
+    for key in [
+        "euler",
+        "rk4",
+        "implicit-euler",
+        "implicit-midpoint",
+        "radau5",
+    ] {
+        let (steps, f) = (s.get("steps", key), s.get("f_evals", key));
+        s.prints(&format!("{steps} steps, {f} f"));
+        match key {
+            "euler" => assert_eq!(f, steps, "{key}"),
+            "rk4" => assert_eq!(f, 4.0 * steps, "{key}"),
+            "implicit-euler" | "implicit-midpoint" => {
+                assert_eq!(steps, (10.0 / h).round(), "{key}")
+            }
+            _ => assert!(steps < 100.0, "radau5: {steps}"),
+        }
+    }
+    for key in ["euler", "rk4"] {
+        let t = s.get("diverged_at", key);
+        s.prints(&format!(
+            "|x| > 10⁶ at t = {}",
+            lectern::widgets::style::fmt_signed(t)
+        ));
+    }
+    s.prints("Radau IIA 5 (adaptive)");
+    assert!(!s.has("diverged_at", "radau5"));
+}

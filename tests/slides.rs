@@ -530,3 +530,104 @@ fn controls_presenter_shows_values_not_sliders() {
     let (sliders, _, _) = run(lectern::deck::Controls::Presenter, true);
     assert!(sliders >= 1, "C brings the controls back");
 }
+
+/// The smallest share of the slide's height a picture of the scene may take. Two pictures side
+/// by side on a 16:9 slide are each ~45 % of its width; at 40 % of its height a pair still
+/// reads from the back row (at 1080p: 430 px, where the techniques' details, a shadow, sand
+/// ripples, a fish, are several pixels), and a slide with a title, one line of text or a
+/// formula and one-line captions leaves about 50 %: 40 % is what such a slide can always keep.
+/// On 27 as it was (three lines of text, a formula, two-line captions) they got 23 %.
+const MIN_PICTURE_SHARE: f32 = 0.4;
+
+/// The scene slides show their pictures large and lined up: every `Scene` widget takes at
+/// least [`MIN_PICTURE_SHARE`] of the slide's height and ends above the footer, the pictures of
+/// one `Columns` block start and end at the same height, and every caption in a picture's
+/// column is laid out on one line (no caption wraps, at 1280×720 and 1920×1080).
+#[test]
+fn scene_pictures_are_large_lined_up_and_captioned_on_one_line() {
+    let mut failures = Vec::new();
+    let mut pictures = 0;
+    let deck = Arc::new(deck());
+    for size in [egui::vec2(1280.0, 720.0), egui::vec2(1920.0, 1080.0)] {
+        for (n, slide) in deck.slides.iter().enumerate() {
+            let scene_columns: Vec<&Vec<Block>> = slide
+                .body
+                .iter()
+                .filter_map(|b| match b {
+                    Block::Columns(cols) => Some(cols),
+                    _ => None,
+                })
+                .flatten()
+                .filter(|col| col.iter().any(is_scene))
+                .collect();
+            if !blocks(slide).into_iter().any(is_scene) {
+                continue;
+            }
+            let shown = deck.clone();
+            let mut state = SlideState::default();
+            let mut h = Harness::builder().with_size(size).build_ui(move |ui| {
+                slide_ui(ui, &shown, n, &mut state);
+            });
+            h.run_steps(3);
+            let at = format!("{}×{} slide {} {:?}", size.x, size.y, n + 1, slide.title);
+            let scenes: Vec<_> = lectern::app::drawn_widgets(&h.ctx)
+                .into_iter()
+                .filter(|w| w.slide == n && w.kind == "scene")
+                .collect();
+            if scenes.is_empty() {
+                failures.push(format!("{at}: no scene drawn"));
+            }
+            for w in &scenes {
+                pictures += 1;
+                let share = w.drawn.height() / size.y;
+                if share < MIN_PICTURE_SHARE {
+                    failures.push(format!(
+                        "{at}: picture {:?} is {:.0} % of the slide's height (< {:.0} %)",
+                        w.path,
+                        100.0 * share,
+                        100.0 * MIN_PICTURE_SHARE
+                    ));
+                }
+                if w.drawn.bottom() > w.content.bottom() + 0.5 {
+                    failures.push(format!("{at}: picture {:?} reaches the footer", w.path));
+                }
+                // the pictures of one `Columns` block (path: block, column, index)
+                for o in &scenes {
+                    let pair = w.path.len() == 3 && o.path.len() == 3 && w.path[0] == o.path[0];
+                    if pair
+                        && ((w.drawn.top() - o.drawn.top()).abs() > 1.0
+                            || (w.drawn.bottom() - o.drawn.bottom()).abs() > 1.0)
+                    {
+                        failures.push(format!(
+                            "{at}: pictures {:?} {:?} and {:?} {:?} do not line up",
+                            w.path, w.drawn, o.path, o.drawn
+                        ));
+                    }
+                }
+            }
+            // a caption on one line is one row of text holding the whole caption
+            let rows: Vec<String> = text_boxes(h.output())
+                .into_iter()
+                .map(|(t, _, _)| t.trim().to_owned())
+                .collect();
+            for caption in scene_columns.iter().flat_map(|col| col.iter()) {
+                if let Block::Text(t) = caption
+                    && !rows.iter().any(|r| r == t.trim())
+                {
+                    failures.push(format!("{at}: caption {t:?} wraps"));
+                }
+            }
+        }
+    }
+    failures.dedup();
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    // slide 19 and the seven project slides, at two sizes
+    assert!(pictures >= 2 * 14, "{pictures} pictures");
+}
+
+fn is_scene(b: &Block) -> bool {
+    matches!(
+        b,
+        Block::Widget(lectern::deck::widgets::WidgetSpec::Scene(_))
+    )
+}

@@ -8,12 +8,11 @@
 
 use std::path::Path as FsPath;
 
-use egui_plot::{Line, MarkerShape, PlotPoint, Points};
+use egui_plot::{Line, PlotPoint, Points};
 
-use super::labels;
 use super::live_ode::LiveOde;
 use super::methods::{MethodSet, Path, path_to};
-use super::neptune::clip_points;
+use super::neptune::{clip_points, exit_labels_ui, exit_marker};
 use super::params::ParamValue;
 use super::style;
 use super::{Param, PlotData, Readout, SlideWidget};
@@ -316,29 +315,12 @@ impl SlideWidget for Energy {
                         );
                     }
                     if let Some(e) = exit {
-                        pl.points(
-                            Points::new("explodes", vec![*e])
-                                .shape(MarkerShape::Up)
-                                .color(style::DIVERGED)
-                                .radius(2.0 * style::KEY_MARKER_RADIUS * u)
-                                .filled(true),
-                        );
+                        labels.push(exit_marker(pl, *e, format!("{} explodes", r.name), u));
                         obstacles_at.push(PlotPoint::new(e[0], e[1]));
-                        labels.push(labels::PlotLabel {
-                            text: format!("{} explodes", r.name),
-                            color: style::DIVERGED,
-                            at: PlotPoint::new(e[0], e[1]),
-                            anchor: egui::Align2::LEFT_TOP,
-                        });
                     }
                 }
             });
-        let t = &shown.transform;
-        let obstacles: Vec<egui::Rect> = obstacles_at
-            .iter()
-            .map(|&e| labels::marker_rect(t, e, 2.0 * style::KEY_MARKER_RADIUS * u))
-            .collect();
-        labels::draw(ui, t, &labels, &obstacles);
+        exit_labels_ui(ui, &shown.transform, &labels, &obstacles_at, u);
     }
 
     fn params(&mut self) -> Vec<Param<'_>> {
