@@ -125,7 +125,7 @@ fn main() {
          `differential-equations` 0.7 (`[f64; N]` state; RK4, DOPRI5, DOP853 and Verner's \
          efficient RKV655e, RKV766e, RKV877e, RKV988e) runs with a keep-the-last-point output \
          handler, so it records nothing per step either. Fixed steps: 2^3 (Kepler 2^5) … 2^14 \
-         per run; tolerances rtol = atol = 1e-3 … 1e-13.\n",
+         per run; tolerances rtol = atol = 1e-2 … 1e-13 (`ode::study::tolerances`).\n",
         std::thread::available_parallelism()
             .map(|n| n.get())
             .unwrap_or(1)

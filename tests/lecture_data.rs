@@ -380,6 +380,92 @@ fn the_rk4_slide_names_the_typos_colour() {
     );
 }
 
+/// The work-precision widget on a stiff problem file (issue #26): a deck with it exports; the
+/// stiff solvers' points are there and meet their tolerance; DOPRI5 and DOP853 are stopped by
+/// their stiffness test (read back as `stiff_at`) instead of grinding through the 2¹⁸-step
+/// budget; fixed-step RK4 explodes.
+#[test]
+fn the_work_precision_widget_runs_the_stiff_solvers_on_a_stiff_problem() {
+    use lectern::widgets::work_precision::{DETERMINISTIC, WorkPrecision};
+    DETERMINISTIC.store(true, std::sync::atomic::Ordering::Relaxed);
+    let deck_file = Path::new(env!("CARGO_MANIFEST_DIR")).join("slides/stiff-test.ron");
+    let text = r#"(
+        title: "stiff",
+        slides: [(
+            id: "stiff",
+            title: "Van der Pol, mu = 1000",
+            body: [Widget(WorkPrecision((ode: File("problems/vanderpol-1000.ron"), t_end: 2000.0, levels: 4, methods: [Rk4, Dopri5, Dop853, Rodas5p, Radau5], rk5: false)))],
+        )],
+    )"#;
+    // as if the file were in slides/ (its problem path resolves there)
+    let deck = lectern::deck::parse_deck_file(text, &deck_file).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let start = std::time::Instant::now();
+    let files =
+        lectern::cli::export_data::write_data(&deck, dir.path(), &Default::default()).unwrap();
+    let csv_file = dir.path().join("slide-01-w1.csv");
+    assert!(files.contains(&csv_file), "{files:?}");
+    let csv = std::fs::read_to_string(&csv_file).unwrap();
+    let rows = |series: &str| -> Vec<Vec<f64>> {
+        csv.lines()
+            .filter(|l| l.split(',').next() == Some(series))
+            .map(|l| l.split(',').skip(2).map(|v| v.parse().unwrap()).collect())
+            .collect()
+    };
+    // (tol, f-evals, error) per run of each stiff solver: all twelve tolerances, and from
+    // 1e-4 to 1e-9 the error within 100·tol of the reference (RADAU5 at rtol 1e-13, as
+    // `ode::study::reference` picks for a stiff problem; rodas5p agrees with it to 3e-13)
+    for stiff in ["rodas5p", "radau5"] {
+        let runs = rows(stiff);
+        assert_eq!(runs.len(), 12, "{stiff}: {csv}");
+        for r in runs.iter().filter(|r| r[0] <= 1e-4 && r[0] >= 1e-9) {
+            assert!(
+                r[2] < 100.0 * r[0],
+                "{stiff} at tol {:e}: error {:e}",
+                r[0],
+                r[2]
+            );
+        }
+        // a few thousand f-evaluations at 1e-6, where an explicit pair needs millions
+        let at_1e6 = runs
+            .iter()
+            .find(|r| (r[0] / 1e-6 - 1.0).abs() < 1e-9)
+            .unwrap();
+        assert!(at_1e6[1] < 3e4, "{stiff}: {at_1e6:?}");
+    }
+    // the explicit pairs stop at the stiffness test: not finished (error ∞) after far fewer
+    // f-evaluations than the step budget would allow (2¹⁸ steps × 6 or 12)
+    for pair in ["dopri5", "dop853"] {
+        let runs = rows(pair);
+        assert_eq!(runs.len(), 12);
+        for r in &runs {
+            assert!(r[2].is_infinite(), "{pair}: {r:?}");
+            assert!(r[1] < 2e5, "{pair} ran {} f-evaluations", r[1]);
+        }
+    }
+    // fixed-step RK4 at h = 1 … 1/8 is far beyond its stability limit (|λ| ~ 1000): diverged
+    assert!(rows("rk4").iter().all(|r| r[2].is_infinite()));
+    // the widget says where the pairs were stopped (its caption reads "stiff: stopped at t = …")
+    let spec = match &deck.slides[0].widgets()[0].1 {
+        lectern::widgets::WidgetSpec::WorkPrecision(s) => s.clone(),
+        _ => unreachable!("the deck above has one WorkPrecision"),
+    };
+    let curves = WorkPrecision::new(spec, Some(&deck_file)).compute();
+    for c in &curves {
+        let stiff_at = c.stiff_at();
+        match c.key.as_str() {
+            "dopri5" | "dop853" => {
+                let t = stiff_at.unwrap_or_else(|| panic!("{}: {:?}", c.key, c.samples));
+                // the first relaxation jump of Van der Pol, mu = 1000, is near t ≈ 807; the
+                // test fires on the slow branch before it
+                assert!(t > 0.0 && t < 2000.0, "{}: {t}", c.key);
+            }
+            _ => assert_eq!(stiff_at, None, "{}", c.key),
+        }
+    }
+    println!("export and study: {:.1} s", start.elapsed().as_secs_f64());
+}
+
 /// The stiff slide's energy, computed here from the CSV's states and the problem file's k
 /// (independently of the widget's own energy expression).
 fn stiff_energy(x: &[f64], k: f64) -> f64 {

@@ -678,3 +678,70 @@ fn work_is_comparable_to_scipy_radau() {
         }
     }
 }
+
+/// The fixed-size fast path takes the stiff solvers too (through the general system view):
+/// the same steps and state as the slice driver, the system's own Jacobian used, every
+/// accepted step reported to the callback.
+#[test]
+fn the_fixed_size_driver_runs_rodas5p_and_radau5_with_the_systems_jacobian() {
+    use lectern::ode::fixed::AsSystem;
+    use lectern::ode::{FixedSystem, solve_embedded_n_with};
+    #[derive(Clone, Copy)]
+    struct FixedRobertson;
+    impl FixedSystem<3> for FixedRobertson {
+        fn rhs(&self, _t: f64, y: &[f64; 3]) -> [f64; 3] {
+            [
+                -0.04 * y[0] + 1e4 * y[1] * y[2],
+                0.04 * y[0] - 1e4 * y[1] * y[2] - 3e7 * y[1] * y[1],
+                3e7 * y[1] * y[1],
+            ]
+        }
+        fn jacobian(&self, _t: f64, y: &[f64; 3], j: &mut [f64]) -> bool {
+            j.copy_from_slice(&[
+                -0.04,
+                1e4 * y[2],
+                1e4 * y[1],
+                0.04,
+                -1e4 * y[2] - 6e7 * y[1],
+                -1e4 * y[1],
+                0.0,
+                6e7 * y[1],
+                0.0,
+            ]);
+            true
+        }
+    }
+    /// The same right-hand side without its Jacobian.
+    struct NoJacobian;
+    impl FixedSystem<3> for NoJacobian {
+        fn rhs(&self, t: f64, y: &[f64; 3]) -> [f64; 3] {
+            FixedRobertson.rhs(t, y)
+        }
+    }
+    let opts = lectern::ode::Adaptive {
+        rtol: 1e-6,
+        atol: 1e-12,
+        record: false,
+        ..Default::default()
+    };
+    let y0 = [1.0, 0.0, 0.0];
+    for m in [Method::Rodas5p, Method::Radau5] {
+        let mut steps = 0;
+        let fast = solve_embedded_n_with(&FixedRobertson, m, 0.0, y0, 1e5, opts, |_, _| steps += 1);
+        assert!(fast.finished(), "{m}: {:?}", fast.outcome);
+        let general = solve_embedded(&AsSystem::<3, _>(FixedRobertson), m, 0.0, &y0, 1e5, opts);
+        assert_eq!(fast.x.as_slice(), general.last().1, "{m}");
+        assert_eq!(
+            (fast.f_evals, fast.steps),
+            (general.f_evals, general.steps),
+            "{m}"
+        );
+        assert_eq!(steps, fast.steps, "{m}");
+        // the system's Jacobian, not differences (which cost n f-evaluations each)
+        let differences = solve_embedded_n_with(&NoJacobian, m, 0.0, y0, 1e5, opts, |_, _| {});
+        assert!(differences.finished());
+        assert!(differences.f_evals > fast.f_evals, "{m}");
+        // Robertson's mass is conserved to round-off
+        assert!((fast.x.iter().sum::<f64>() - 1.0).abs() < 1e-12, "{m}");
+    }
+}

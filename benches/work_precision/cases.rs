@@ -50,11 +50,6 @@ pub const CASES: [CaseSpec; 3] = [
     },
 ];
 
-/// Tolerances rtol = atol of the adaptive runs.
-pub fn tolerances() -> Vec<f64> {
-    (3..=13).map(|k| 10f64.powi(-k)).collect()
-}
-
 /// The pendulum from 179° at t = 10, exact to 40 digits (Jacobi elliptic functions, computed
 /// by `scripts/scipy_reference.py`), and its start as the problem file writes it.
 fn pendulum_reference() -> ([f64; 2], [f64; 2]) {
@@ -73,7 +68,7 @@ pub fn run(spec: &CaseSpec) -> Vec<Curve> {
         .clone()
         .map(|k| spec.t_end / 2f64.powi(k))
         .collect();
-    let tols = tolerances();
+    let tols = lectern::ode::study::tolerances();
     match spec.problem {
         Problem::Harmonic => {
             let exact = [spec.t_end.cos(), -spec.t_end.sin()];

@@ -3,12 +3,12 @@
 //! wall time of repeated solves with its final-time error and f-evaluations.
 
 use std::hint::black_box;
-use std::time::Instant;
 
 use differential_equations::prelude::{
     ControlFlag, ExplicitRungeKutta, IVP, Interpolation, ODE, Solout, Solution as DeSolution,
 };
 use lectern::ode::fixed::AsSystem;
+use lectern::ode::study::Timing;
 use lectern::ode::{
     Adaptive, FixedSystem, Method, Scheme, solve_embedded, solve_embedded_n, solve_fixed_final,
     solve_fixed_n,
@@ -27,22 +27,10 @@ pub struct Curve {
     pub points: Vec<(f64, f64, u64)>,
 }
 
-/// Minimum wall time over repeats (at least 3, until ~30 ms are spent, at most 200).
-pub fn timed(mut f: impl FnMut() -> Run) -> (Run, f64) {
-    let mut best = f64::INFINITY;
-    let mut total = 0.0;
-    let mut out = None;
-    let mut i = 0;
-    while i < 3 || (total < 0.03 && i < 200) {
-        let t = Instant::now();
-        let r = black_box(f());
-        let s = t.elapsed().as_secs_f64();
-        best = best.min(s);
-        total += s;
-        out = Some(r);
-        i += 1;
-    }
-    (out.expect("ran at least once"), best)
+/// The fastest of repeated solves, by the one timing policy of every study
+/// (`ode::study::Timing::BENCH`: at least 3, until ~30 ms are spent, at most 200).
+pub fn timed(f: impl FnMut() -> Run) -> (Run, f64) {
+    Timing::BENCH.fastest(f)
 }
 
 /// The problem of one case, with what every runner needs.

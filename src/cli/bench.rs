@@ -5,13 +5,13 @@
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
-use std::time::Instant;
 
 use crate::ode::fixed::AsSystem;
 use crate::ode::native;
 use crate::ode::problem::Problem;
 use crate::ode::study::{
-    Point, Sweep, cost_at_error, max_error, reference, work_precision, work_precision_fixed,
+    Clock, Sample, Sweep, Timing, cost_at_error, max_error, reference, tolerances, work_precision,
+    work_precision_fixed_n,
 };
 use crate::ode::{FixedSystem, FnSystem, Method, Scheme, System, solve_fixed_final};
 
@@ -24,9 +24,12 @@ pub struct Args {
     /// Write the report (Markdown) here as well as printing it.
     #[arg(long)]
     pub out: Option<PathBuf>,
-    /// Timing repeats per point (the minimum is kept).
-    #[arg(long, default_value_t = 5)]
-    pub repeats: usize,
+}
+
+/// A labelled run of the report.
+struct Point {
+    method: String,
+    sample: Sample,
 }
 
 /// The benchmark cases: problem file, final time.
@@ -44,60 +47,51 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     )?;
     writeln!(
         report,
-        "Error = max-norm difference of the final state from the exact solution (oscillator), the initial state after one period (Kepler) or a Verner 9(8) rtol 1e-14 reference (pendulum). Time = minimum of {} runs.\n",
-        args.repeats
+        "Error = max-norm difference of the final state from the exact solution (oscillator), the initial state after one period (Kepler) or a Verner 9(8) rtol 1e-14 reference (pendulum). Time = the fastest of repeated runs (at least {}, until {} ms are spent, at most {}: `ode::study::Timing::BENCH`). Adaptive pairs at rtol = atol = {:e} … {:e}.\n",
+        Timing::BENCH.min_repeats,
+        Timing::BENCH.budget_secs * 1e3,
+        Timing::BENCH.max_repeats,
+        tolerances()[0],
+        tolerances().last().copied().unwrap_or_default(),
     )?;
-    let sweep = Sweep {
-        methods: [
-            Method::Euler,
-            Method::Midpoint,
-            Method::Heun,
-            Method::Rk4,
-            Method::Verlet,
-        ]
-        .into_iter()
-        .chain(Method::PAIRS)
-        .collect(),
-        hs: Vec::new(),
-        tols: (3..=12).step_by(1).map(|k| 10f64.powi(-k)).collect(),
-        repeats: args.repeats,
-    };
+    let fixed = [
+        Method::Euler,
+        Method::Midpoint,
+        Method::Heun,
+        Method::Rk4,
+        Method::Verlet,
+    ];
     for (name, t_end) in CASES {
         let p = Problem::load(args.problems.join(format!("{name}.ron")))
             .map_err(|d| anyhow::anyhow!("{d}"))?;
         let exact = final_reference(&p, t_end);
         // h so that the run has 2^k steps, from 64 to 65536
         let hs: Vec<f64> = (6..=16).map(|k| t_end / (1u64 << k) as f64).collect();
-        let mut points = work_precision(
-            &p,
-            p.t0,
-            &p.initial,
-            t_end,
-            &exact,
-            &Sweep {
-                hs: hs.clone(),
-                ..sweep.clone()
-            },
-        );
+        let sweeps = fixed
+            .into_iter()
+            .map(|m| {
+                let sweep = Sweep::Steps {
+                    scheme: Scheme::Method(m),
+                    hs: hs.clone(),
+                };
+                (m, sweep)
+            })
+            .chain(Method::PAIRS.into_iter().map(|m| {
+                (
+                    m,
+                    Sweep::tolerances(m, crate::ode::adaptive::MAX_ADAPTIVE_STEPS),
+                )
+            }));
+        let mut points = Vec::new();
+        for (m, sweep) in sweeps {
+            let samples = work_precision(&p, p.t0, &p.initial, t_end, &exact, &sweep, CLOCK);
+            points.extend(labelled(m.name(), samples));
+        }
         // the same RK4 on a native right-hand side: general driver and fixed-size fast path
         let native = match name {
-            "harmonic" => native_points(
-                native::Harmonic::from_problem(&p),
-                &p,
-                t_end,
-                &exact,
-                &hs,
-                args.repeats,
-            ),
-            "kepler" => native_points(native::Kepler, &p, t_end, &exact, &hs, args.repeats),
-            _ => native_points(
-                native::Pendulum::from_problem(&p),
-                &p,
-                t_end,
-                &exact,
-                &hs,
-                args.repeats,
-            ),
+            "harmonic" => native_points(native::Harmonic::from_problem(&p), &p, t_end, &exact, &hs),
+            "kepler" => native_points(native::Kepler, &p, t_end, &exact, &hs),
+            _ => native_points(native::Pendulum::from_problem(&p), &p, t_end, &exact, &hs),
         };
         points.extend(native?);
         writeln!(report, "## {} (t_end = {t_end:.4})\n", p.name)?;
@@ -108,7 +102,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         report,
         "## Expression right-hand side against a native closure\n"
     )?;
-    let ratio = expression_vs_native(&args.problems, args.repeats)?;
+    let ratio = expression_vs_native(&args.problems)?;
     writeln!(report, "{ratio}")?;
     print!("{report}");
     if let Some(out) = &args.out {
@@ -130,6 +124,16 @@ pub fn final_reference(p: &Problem, t_end: f64) -> Vec<f64> {
     }
 }
 
+/// Every run of the report is timed by the benchmarks' policy.
+const CLOCK: Clock = Clock::Measured(Timing::BENCH);
+
+fn labelled(label: &str, samples: Vec<Sample>) -> impl Iterator<Item = Point> + '_ {
+    samples.into_iter().map(move |sample| Point {
+        method: label.to_owned(),
+        sample,
+    })
+}
+
 /// Labels of the native-RHS rows.
 const RK4_NATIVE: &str = "rk4 native (slices)";
 const RK4_FIXED: &str = "rk4 native [f64; N]";
@@ -141,33 +145,21 @@ fn native_points<const N: usize, S: FixedSystem<N> + Copy>(
     t_end: f64,
     exact: &[f64],
     hs: &[f64],
-    repeats: usize,
 ) -> anyhow::Result<Vec<Point>> {
     let x0: [f64; N] = p
         .initial
         .as_slice()
         .try_into()
         .map_err(|_| anyhow::anyhow!("{}: expected {N} initial values", p.path.display()))?;
-    let sweep = Sweep {
-        methods: vec![Method::Rk4],
+    let sweep = Sweep::Steps {
+        scheme: Scheme::Method(Method::Rk4),
         hs: hs.to_vec(),
-        tols: Vec::new(),
-        repeats,
     };
-    let mut out = work_precision(
-        &AsSystem::<N, S>(sys),
-        p.t0,
-        &p.initial,
-        t_end,
-        exact,
-        &sweep,
-    );
-    for pt in &mut out {
-        pt.method = RK4_NATIVE.into();
-    }
-    out.extend(work_precision_fixed(
-        &sys, RK4_FIXED, p.t0, x0, t_end, exact, hs, repeats,
-    ));
+    let general = &AsSystem::<N, S>(sys);
+    let samples = work_precision(general, p.t0, &p.initial, t_end, exact, &sweep, CLOCK);
+    let mut out: Vec<Point> = labelled(RK4_NATIVE, samples).collect();
+    let samples = work_precision_fixed_n(&sys, p.t0, x0, t_end, exact, hs, CLOCK);
+    out.extend(labelled(RK4_FIXED, samples));
     Ok(out)
 }
 
@@ -178,7 +170,7 @@ fn write_equal_error(out: &mut String, points: &[Point]) -> std::fmt::Result {
         points
             .iter()
             .filter(|p| p.method == m)
-            .map(|p| (p.error, p.secs))
+            .map(|p| (p.sample.error, p.sample.secs))
             .collect()
     };
     let (expr, slices, fixed, dp) = (
@@ -225,10 +217,10 @@ fn write_table(out: &mut String, points: &[Point]) -> std::fmt::Result {
             out,
             "| {} | {:.3e} | {:.3e} | {} | {:.1} |",
             p.method,
-            p.h_or_tol,
-            p.error,
-            p.f_evals,
-            p.secs * 1e6
+            p.sample.h_or_tol,
+            p.sample.error,
+            p.sample.f_evals,
+            p.sample.secs * 1e6
         )?;
     }
     writeln!(out)
@@ -248,16 +240,13 @@ pub fn kepler_native() -> FnSystem<impl Fn(f64, &[f64], &mut [f64])> {
 
 /// Time of RK4 over one Kepler period (h = 2π/20000) with the expression RHS and with the
 /// native closure; returns a Markdown line with both and their ratio.
-fn expression_vs_native(dir: &std::path::Path, repeats: usize) -> anyhow::Result<String> {
+fn expression_vs_native(dir: &std::path::Path) -> anyhow::Result<String> {
     let p = Problem::load(dir.join("kepler.ron")).map_err(|d| anyhow::anyhow!("{d}"))?;
     let native = kepler_native();
     let h = std::f64::consts::TAU / 20000.0;
     let time = |sys: &dyn System| {
-        let mut best = f64::INFINITY;
-        let mut last = Vec::new();
-        for _ in 0..repeats.max(3) {
-            let t = Instant::now();
-            let s = solve_fixed_final(
+        let (s, best) = Timing::BENCH.fastest(|| {
+            solve_fixed_final(
                 sys,
                 Scheme::Method(Method::Rk4),
                 0.0,
@@ -265,11 +254,9 @@ fn expression_vs_native(dir: &std::path::Path, repeats: usize) -> anyhow::Result
                 h,
                 std::f64::consts::TAU,
                 f64::INFINITY,
-            );
-            best = best.min(t.elapsed().as_secs_f64());
-            last = s.last().1.to_vec();
-        }
-        (best, last)
+            )
+        });
+        (best, s.last().1.to_vec())
     };
     let (t_expr, x_expr) = time(&p);
     let (t_native, x_native) = time(&native);

@@ -13,12 +13,28 @@ use super::solve::{Outcome, fixed_step_count};
 /// A first-order system ẋ = f(t, x) whose state has exactly `N` values.
 pub trait FixedSystem<const N: usize> {
     fn rhs(&self, t: f64, x: &[f64; N]) -> [f64; N];
+    /// ∂f/∂x row-major into `jac` (N² values) and true, or false where there is none (the
+    /// stiff solvers then use differences), as [`System::jacobian`].
+    fn jacobian(&self, _t: f64, _x: &[f64; N], _jac: &mut [f64]) -> bool {
+        false
+    }
+    /// ∂f/∂t into `dfdt` and true, or false where there is none, as
+    /// [`System::time_derivative`].
+    fn time_derivative(&self, _t: f64, _x: &[f64; N], _dfdt: &mut [f64; N]) -> bool {
+        false
+    }
 }
 
 impl<const N: usize, S: FixedSystem<N> + ?Sized> FixedSystem<N> for &S {
     #[inline(always)]
     fn rhs(&self, t: f64, x: &[f64; N]) -> [f64; N] {
         (**self).rhs(t, x)
+    }
+    fn jacobian(&self, t: f64, x: &[f64; N], jac: &mut [f64]) -> bool {
+        (**self).jacobian(t, x, jac)
+    }
+    fn time_derivative(&self, t: f64, x: &[f64; N], dfdt: &mut [f64; N]) -> bool {
+        (**self).time_derivative(t, x, dfdt)
     }
 }
 
@@ -45,6 +61,15 @@ impl<const N: usize, S: FixedSystem<N>> System for AsSystem<N, S> {
     fn rhs(&self, t: f64, x: &[f64], dxdt: &mut [f64]) {
         let x: &[f64; N] = x.try_into().expect("state of length N");
         dxdt.copy_from_slice(&self.0.rhs(t, x));
+    }
+    fn jacobian(&self, t: f64, x: &[f64], jac: &mut [f64]) -> bool {
+        let x: &[f64; N] = x.try_into().expect("state of length N");
+        self.0.jacobian(t, x, jac)
+    }
+    fn time_derivative(&self, t: f64, x: &[f64], dfdt: &mut [f64]) -> bool {
+        let x: &[f64; N] = x.try_into().expect("state of length N");
+        let out: &mut [f64; N] = dfdt.try_into().expect("derivative of length N");
+        self.0.time_derivative(t, x, out)
     }
 }
 

@@ -17,6 +17,8 @@ pub struct Lu {
     /// row-major: the matrix to factor, then L (unit diagonal, below) and U (on and above)
     pub m: Vec<f64>,
     piv: Vec<usize>,
+    /// 1/U_kk: a solve multiplies (the Newton iterations solve many times per factorisation)
+    inv_diag: Vec<f64>,
 }
 
 impl Lu {
@@ -25,6 +27,7 @@ impl Lu {
             n,
             m: vec![0.0; n * n],
             piv: vec![0; n],
+            inv_diag: vec![0.0; n],
         }
     }
 
@@ -48,6 +51,7 @@ impl Lu {
                     m.swap(k * n + j, p * n + j);
                 }
             }
+            self.inv_diag[k] = 1.0 / d;
             for i in k + 1..n {
                 let f = m[i * n + k] / d;
                 m[i * n + k] = f;
@@ -67,19 +71,23 @@ impl Lu {
         for k in 0..n {
             r.swap(k, self.piv[k]);
         }
+        // rows as slices, zipped: no bounds checks in the inner loops (the Newton iterations
+        // and Rosenbrock's stages spend most of their time here)
         for i in 0..n {
-            let mut acc = r[i];
-            for j in 0..i {
-                acc -= m[i * n + j] * r[j];
+            let (done, rest) = r.split_at_mut(i);
+            let mut acc = rest[0];
+            for (l, x) in m[i * n..i * n + i].iter().zip(done.iter()) {
+                acc -= l * x;
             }
-            r[i] = acc;
+            rest[0] = acc;
         }
         for i in (0..n).rev() {
-            let mut acc = r[i];
-            for j in i + 1..n {
-                acc -= m[i * n + j] * r[j];
+            let (head, done) = r.split_at_mut(i + 1);
+            let mut acc = head[i];
+            for (u, x) in m[i * n + i + 1..(i + 1) * n].iter().zip(done.iter()) {
+                acc -= u * x;
             }
-            r[i] = acc / m[i * n + i];
+            head[i] = acc * self.inv_diag[i];
         }
     }
 }
@@ -92,6 +100,8 @@ pub struct LuComplex {
     pub re: Vec<f64>,
     pub im: Vec<f64>,
     piv: Vec<usize>,
+    /// 1/U_kk (real and imaginary parts), as [`Lu`]'s
+    inv_diag: Vec<(f64, f64)>,
 }
 
 impl LuComplex {
@@ -101,6 +111,7 @@ impl LuComplex {
             re: vec![0.0; n * n],
             im: vec![0.0; n * n],
             piv: vec![0; n],
+            inv_diag: vec![(0.0, 0.0); n],
         }
     }
 
@@ -130,6 +141,7 @@ impl LuComplex {
             }
             // 1/d
             let (ir, ii) = (dr / den, -di / den);
+            self.inv_diag[k] = (ir, ii);
             for i in k + 1..n {
                 let (ar, ai) = (re[i * n + k], im[i * n + k]);
                 let (fr, fi) = (ar * ir - ai * ii, ar * ii + ai * ir);
@@ -155,27 +167,37 @@ impl LuComplex {
             r_re.swap(k, self.piv[k]);
             r_im.swap(k, self.piv[k]);
         }
+        // as `Lu::solve`: rows as slices, zipped (no bounds checks)
         for i in 0..n {
             let (mut ar, mut ai) = (r_re[i], r_im[i]);
-            for j in 0..i {
-                let (lr, li) = (re[i * n + j], im[i * n + j]);
-                ar -= lr * r_re[j] - li * r_im[j];
-                ai -= lr * r_im[j] + li * r_re[j];
+            let row = i * n..i * n + i;
+            for (((lr, li), xr), xi) in re[row.clone()]
+                .iter()
+                .zip(&im[row])
+                .zip(&r_re[..i])
+                .zip(&r_im[..i])
+            {
+                ar -= lr * xr - li * xi;
+                ai -= lr * xi + li * xr;
             }
             r_re[i] = ar;
             r_im[i] = ai;
         }
         for i in (0..n).rev() {
             let (mut ar, mut ai) = (r_re[i], r_im[i]);
-            for j in i + 1..n {
-                let (ur, ui) = (re[i * n + j], im[i * n + j]);
-                ar -= ur * r_re[j] - ui * r_im[j];
-                ai -= ur * r_im[j] + ui * r_re[j];
+            let row = i * n + i + 1..(i + 1) * n;
+            for (((ur, ui), xr), xi) in re[row.clone()]
+                .iter()
+                .zip(&im[row])
+                .zip(&r_re[i + 1..])
+                .zip(&r_im[i + 1..])
+            {
+                ar -= ur * xr - ui * xi;
+                ai -= ur * xi + ui * xr;
             }
-            let (dr, di) = (re[i * n + i], im[i * n + i]);
-            let den = dr * dr + di * di;
-            r_re[i] = (ar * dr + ai * di) / den;
-            r_im[i] = (ai * dr - ar * di) / den;
+            let (ir, ii) = self.inv_diag[i];
+            r_re[i] = ar * ir - ai * ii;
+            r_im[i] = ar * ii + ai * ir;
         }
     }
 }

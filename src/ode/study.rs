@@ -1,11 +1,12 @@
 //! Convergence and work-precision studies: pure functions over a system, so a slide can run
-//! them on a background thread and `lectern bench` can print them.
+//! them on a background thread, `lectern bench` can print them and the benchmarks can time
+//! them, all by one timing policy ([`Timing`]) over one list of tolerances ([`tolerances`]).
 
 use std::time::Instant;
 
 use super::adaptive::{Adaptive, solve_embedded};
 use super::fixed::{FixedSystem, solve_fixed_n};
-use super::solve::{Scheme, solve_fixed_final};
+use super::solve::{Outcome, Scheme, Solution, solve_fixed_final};
 use super::{Method, System};
 
 /// Max-norm distance between two states (∞ when either is not finite).
@@ -75,135 +76,301 @@ pub fn convergence<S: System + ?Sized>(
     Convergence { points, slope }
 }
 
-/// A very accurate final state (Verner 9(8) at rtol 1e-14) for problems without an exact
-/// solution.
+/// A very accurate final state for problems without an exact solution: Verner 9(8) at rtol
+/// 1e-14, or, where a DOP853 probe's stiffness test fires (Vern9 would need millions of steps),
+/// RADAU5 at rtol 1e-13.
 pub fn reference<S: System + ?Sized>(sys: &S, t0: f64, x0: &[f64], t_end: f64) -> Vec<f64> {
+    let probe = Adaptive {
+        rtol: 1e-6,
+        atol: 1e-9,
+        record: false,
+        stop_if_stiff: true,
+        ..Adaptive::default()
+    };
+    let stiff = matches!(
+        solve_embedded(sys, Method::Dop853, t0, x0, t_end, probe).outcome,
+        Outcome::Stiff { .. }
+    );
+    let (method, rtol) = if stiff {
+        (Method::Radau5, 1e-13)
+    } else {
+        (Method::Vern9, 1e-14)
+    };
     let opts = Adaptive {
-        rtol: 1e-14,
-        atol: 1e-16,
+        rtol,
+        atol: rtol * 1e-2,
         record: false,
         ..Adaptive::default()
     };
-    solve_embedded(sys, Method::Vern9, t0, x0, t_end, opts)
+    solve_embedded(sys, method, t0, x0, t_end, opts)
         .last()
         .1
         .to_vec()
 }
 
+/// The one timing policy of every work-precision study (the slide, `lectern bench`, the
+/// benchmarks): the fastest of repeated runs, at least `min_repeats`, repeated while the
+/// whole took less than `budget_secs`, at most `max_repeats`. The fastest, not the mean: on a
+/// shared machine a preempted repeat says nothing about the method (a mean made the slide's
+/// seconds plot zig-zag live).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Timing {
+    pub min_repeats: usize,
+    pub budget_secs: f64,
+    pub max_repeats: usize,
+}
+
+impl Timing {
+    /// The slide: it runs again whenever a slider moves, beside the software renderer.
+    pub const SLIDE: Timing = Timing {
+        min_repeats: 3,
+        budget_secs: 2e-3,
+        max_repeats: 50,
+    };
+    /// `lectern bench` and the benchmarks in `benches/`.
+    pub const BENCH: Timing = Timing {
+        min_repeats: 3,
+        budget_secs: 0.03,
+        max_repeats: 200,
+    };
+
+    /// Runs `run` by this policy: its last result and the fastest repeat's seconds.
+    pub fn fastest<R>(&self, mut run: impl FnMut() -> R) -> (R, f64) {
+        let start = Instant::now();
+        let mut reps = 0;
+        let mut fastest = f64::INFINITY;
+        loop {
+            let t = Instant::now();
+            let r = std::hint::black_box(run());
+            fastest = fastest.min(t.elapsed().as_secs_f64());
+            reps += 1;
+            let spent = start.elapsed().as_secs_f64();
+            if (reps >= self.min_repeats && spent > self.budget_secs) || reps >= self.max_repeats {
+                return (r, fastest);
+            }
+        }
+    }
+}
+
+/// Where a sample's seconds come from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Clock {
+    /// measured, by [`Timing`]
+    Measured(Timing),
+    /// modelled: this many seconds per f-evaluation, one run each (reproducible pictures for
+    /// snapshot tests and headless exports)
+    PerEval(f64),
+}
+
+impl Clock {
+    fn time<R>(&self, run: impl FnMut() -> R, f_evals: impl Fn(&R) -> u64) -> (R, f64) {
+        match self {
+            Clock::Measured(timing) => timing.fastest(run),
+            Clock::PerEval(secs) => {
+                let mut run = run;
+                let r = run();
+                let t = f_evals(&r) as f64 * secs;
+                (r, t)
+            }
+        }
+    }
+}
+
+/// The loosest tolerance of the adaptive sweeps; run k uses rtol = TOL_MAX / 10^k.
+pub const TOL_MAX: f64 = 1e-2;
+/// The tightest tolerance asked of a method: near round-off, and above the loop's floor
+/// (rtol > 10 machine epsilons).
+pub const TOL_MIN: f64 = 1e-13;
+
+/// The tolerances of every adaptive sweep (slide, `lectern bench`, benchmarks), one per decade
+/// from [`TOL_MAX`] to [`TOL_MIN`].
+pub fn tolerances() -> Vec<f64> {
+    let decades = (TOL_MAX / TOL_MIN).log10().round() as i32;
+    (0..=decades).map(|k| TOL_MAX / 10f64.powi(k)).collect()
+}
+
 /// One run of a work-precision diagram.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Point {
-    pub method: String,
-    /// the step h, or the tolerance (rtol = atol) of adaptive runs
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sample {
+    /// the step h, or the relative tolerance of an adaptive run
     pub h_or_tol: f64,
-    pub error: f64,
     pub f_evals: u64,
-    /// minimum wall time over the repeats
     pub secs: f64,
+    /// error at t_end; ∞ for a run that did not get there
+    pub error: f64,
+    /// where an explicit pair's stiffness test stopped the run
+    pub stiff_at: Option<f64>,
 }
 
-/// What to sweep: fixed-step methods over `hs`, adaptive pairs over `tols`.
+/// What one method's sweep runs.
 #[derive(Debug, Clone)]
-pub struct Sweep {
-    pub methods: Vec<Method>,
-    pub hs: Vec<f64>,
-    pub tols: Vec<f64>,
-    /// timing repeats per point (the minimum is kept)
-    pub repeats: usize,
+pub enum Sweep<'a> {
+    /// fixed steps, each h from t0 to t_end; a state beyond 1e12 ends the run (diverged)
+    Steps { scheme: Scheme<'a>, hs: Vec<f64> },
+    /// an adaptive method at each rtol, atol = `atol_over_rtol`·rtol, at most `max_steps`
+    /// steps; an explicit pair stops where its stiffness test fires (a stiff problem would
+    /// make it crawl for millions of steps)
+    Tolerances {
+        method: Method,
+        tols: Vec<f64>,
+        atol_over_rtol: f64,
+        max_steps: usize,
+    },
 }
 
-/// Error at t_end against `exact_end` vs f-evaluations and wall time, for every method and
-/// step (or tolerance) of the sweep. Diverged runs are reported with an infinite error.
+impl Sweep<'_> {
+    /// An adaptive sweep over [`tolerances`] with rtol = atol.
+    pub fn tolerances(method: Method, max_steps: usize) -> Sweep<'static> {
+        Sweep::Tolerances {
+            method,
+            tols: tolerances(),
+            atol_over_rtol: 1.0,
+            max_steps,
+        }
+    }
+}
+
+/// Runs one method's sweep from (t0, x0) to t_end: error by [`max_error`] against
+/// `exact_end`, the true state at t_end, f-evaluations, and seconds by `clock`.
 pub fn work_precision<S: System + ?Sized>(
     sys: &S,
     t0: f64,
     x0: &[f64],
     t_end: f64,
     exact_end: &[f64],
-    sweep: &Sweep,
-) -> Vec<Point> {
-    let mut out = Vec::new();
-    for &m in &sweep.methods {
-        let params: &[f64] = if m.is_adaptive() {
-            &sweep.tols
+    sweep: &Sweep<'_>,
+    clock: Clock,
+) -> Vec<Sample> {
+    let sample = |h_or_tol: f64, run: &dyn Fn() -> Solution| {
+        let (sol, secs) = clock.time(run, |s: &Solution| s.f_evals);
+        let error = if sol.finished() {
+            max_error(sol.last().1, exact_end)
         } else {
-            &sweep.hs
+            f64::INFINITY
         };
-        for &p in params {
-            let run = || {
-                if m.is_adaptive() {
-                    let opts = Adaptive {
-                        rtol: p,
-                        atol: p,
-                        record: false,
-                        ..Adaptive::default()
-                    };
-                    solve_embedded(sys, m, t0, x0, t_end, opts)
-                } else {
-                    solve_fixed_final(sys, Scheme::Method(m), t0, x0, p, t_end, f64::INFINITY)
-                }
-            };
-            let mut best = f64::INFINITY;
-            let mut sol = None;
-            for _ in 0..sweep.repeats.max(1) {
-                let start = Instant::now();
-                let s = run();
-                best = best.min(start.elapsed().as_secs_f64());
-                sol = Some(s);
-            }
-            let sol = sol.expect("at least one repeat");
-            let error = if sol.finished() {
-                max_error(sol.last().1, exact_end)
-            } else {
-                f64::INFINITY
-            };
-            out.push(Point {
-                method: m.name().to_string(),
-                h_or_tol: p,
-                error,
-                f_evals: sol.f_evals,
-                secs: best,
-            });
+        let stiff_at = match sol.outcome {
+            Outcome::Stiff { t } => Some(t),
+            _ => None,
+        };
+        Sample {
+            h_or_tol,
+            f_evals: sol.f_evals,
+            secs,
+            error,
+            stiff_at,
         }
+    };
+    match sweep {
+        Sweep::Steps { scheme, hs } => hs
+            .iter()
+            .map(|&h| {
+                sample(h, &|| {
+                    solve_fixed_final(sys, *scheme, t0, x0, h, t_end, 1e12)
+                })
+            })
+            .collect(),
+        Sweep::Tolerances {
+            method,
+            tols,
+            atol_over_rtol,
+            max_steps,
+        } => tols
+            .iter()
+            .map(|&tol| {
+                let opts = Adaptive {
+                    rtol: tol,
+                    atol: tol * atol_over_rtol,
+                    record: false,
+                    max_steps: *max_steps,
+                    stop_if_stiff: true,
+                    ..Adaptive::default()
+                };
+                sample(tol, &|| solve_embedded(sys, *method, t0, x0, t_end, opts))
+            })
+            .collect(),
     }
-    out
 }
 
-#[allow(clippy::too_many_arguments)]
-/// [`work_precision`] for RK4 on the fixed-size fast path ([`solve_fixed_n`]); the points are
-/// labelled `label`.
-pub fn work_precision_fixed<const N: usize, S: FixedSystem<N>>(
+/// [`work_precision`] for RK4 with fixed steps `hs` on the fixed-size fast path
+/// ([`solve_fixed_n`]).
+pub fn work_precision_fixed_n<const N: usize, S: FixedSystem<N>>(
     sys: &S,
-    label: &str,
     t0: f64,
     x0: [f64; N],
     t_end: f64,
     exact_end: &[f64],
     hs: &[f64],
-    repeats: usize,
-) -> Vec<Point> {
+    clock: Clock,
+) -> Vec<Sample> {
     hs.iter()
         .map(|&h| {
-            let mut best = f64::INFINITY;
-            let mut sol = None;
-            for _ in 0..repeats.max(1) {
-                let start = Instant::now();
-                let s = solve_fixed_n(sys, t0, std::hint::black_box(x0), h, t_end, f64::INFINITY);
-                best = best.min(start.elapsed().as_secs_f64());
-                sol = Some(s);
-            }
-            let sol = sol.expect("at least one repeat");
-            Point {
-                method: label.to_string(),
+            let (sol, secs) = clock.time(
+                || solve_fixed_n(sys, t0, std::hint::black_box(x0), h, t_end, 1e12),
+                |s| s.f_evals,
+            );
+            Sample {
                 h_or_tol: h,
+                f_evals: sol.f_evals,
+                secs,
                 error: if sol.finished() {
                     max_error(&sol.x, exact_end)
                 } else {
                     f64::INFINITY
                 },
-                f_evals: sol.f_evals,
-                secs: best,
+                stiff_at: None,
             }
+        })
+        .collect()
+}
+
+/// The least error a sweep reached (∞ if none finished).
+pub fn best_error(samples: &[Sample]) -> f64 {
+    samples
+        .iter()
+        .map(|s| s.error)
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// The seconds a sweep needs to reach an error of at most `target`: interpolated in log–log
+/// between the two runs that bracket it, the cheapest run if even that one gets there, `None`
+/// if no run got there.
+pub fn secs_to_reach(samples: &[Sample], target: f64) -> Option<f64> {
+    let mut pts: Vec<(f64, f64)> = samples
+        .iter()
+        .filter(|s| s.error.is_finite() && s.error > 0.0 && s.secs > 0.0)
+        .map(|s| (s.error.log10(), s.secs.log10()))
+        .collect();
+    pts.sort_by(|a, b| b.0.total_cmp(&a.0));
+    let t = target.log10();
+    if pts.first().is_some_and(|p| p.0 <= t) {
+        return Some(10f64.powf(pts[0].1));
+    }
+    pts.windows(2).find(|w| w[0].0 > t && w[1].0 <= t).map(|w| {
+        let f = (t - w[0].0) / (w[1].0 - w[0].0);
+        10f64.powf(w[0].1 + f * (w[1].1 - w[0].1))
+    })
+}
+
+/// For each target error 10⁻², 10^-2.5, … 10⁻¹² (as x = −log10 of it): how many times longer
+/// each sweep takes than the fastest sweep that reaches it (log10 of the ratio, 0 = the
+/// fastest). The sweep at 0 is the method to pick for that accuracy.
+pub fn relative_cost(sweeps: &[&[Sample]]) -> Vec<Vec<[f64; 2]>> {
+    let targets: Vec<f64> = (4..=24).map(|k| 10f64.powf(-(k as f64) / 2.0)).collect();
+    let costs: Vec<Vec<Option<f64>>> = sweeps
+        .iter()
+        .map(|c| targets.iter().map(|&t| secs_to_reach(c, t)).collect())
+        .collect();
+    let best: Vec<Option<f64>> = (0..targets.len())
+        .map(|k| costs.iter().filter_map(|c| c[k]).reduce(f64::min))
+        .collect();
+    costs
+        .iter()
+        .map(|c| {
+            targets
+                .iter()
+                .enumerate()
+                .filter_map(|(k, t)| Some([-t.log10(), (c[k]? / best[k]?).log10()]))
+                .collect()
         })
         .collect()
 }
@@ -254,5 +421,59 @@ mod tests {
         assert!((c - 1e-6f64.powf(-0.25)).abs() < 1e-9 * c);
         assert_eq!(cost_at_error(&pts, 1e-9), None);
         assert_eq!(cost_at_error(&pts, 1.0), None);
+    }
+
+    fn sweep(pts: &[(f64, f64)]) -> Vec<Sample> {
+        pts.iter()
+            .map(|&(secs, error)| Sample {
+                h_or_tol: 1.0,
+                f_evals: 1,
+                secs,
+                error,
+                stiff_at: None,
+            })
+            .collect()
+    }
+
+    #[test]
+    fn relative_cost_puts_the_cheapest_method_at_zero_and_its_crossing_where_it_is() {
+        // a cheap low order (error 1e-2 for 1 s, 1e-4 for 100 s) and a dear high order
+        // (1e-2 for 10 s, 1e-10 for 100 s): loose errors favour the first, tight the second
+        let low = sweep(&[(1.0, 1e-2), (100.0, 1e-4)]);
+        let high = sweep(&[(10.0, 1e-2), (100.0, 1e-10)]);
+        assert_eq!(secs_to_reach(&low, 1e-3), Some(10.0));
+        assert_eq!(secs_to_reach(&low, 1e-6), None);
+        let r = relative_cost(&[&low, &high]);
+        // at 1e-2 (x = 2) the low order is the fastest, the high one 10× slower
+        assert_eq!(r[0][0], [2.0, 0.0]);
+        assert!((r[1][0][1] - 1.0).abs() < 1e-12);
+        // at 1e-4 (x = 4) both take 100 s … beyond, only the high order is there, at 0
+        let last = r[1].last().unwrap();
+        assert_eq!(*last, [10.0, 0.0]);
+        assert!(r[0].iter().all(|p| p[0] <= 4.0 + 1e-9));
+    }
+
+    #[test]
+    fn the_timing_policy_repeats_within_its_bounds_and_keeps_the_fastest() {
+        let mut n = 0;
+        let policy = Timing {
+            min_repeats: 3,
+            budget_secs: 0.0,
+            max_repeats: 10,
+        };
+        let (last, secs) = policy.fastest(|| {
+            n += 1;
+            n
+        });
+        // a zero budget: exactly the minimum number of repeats, the last result returned
+        assert_eq!((n, last), (3, 3));
+        assert!(secs >= 0.0 && secs.is_finite());
+        let mut m = 0;
+        let (_, _) = Timing {
+            budget_secs: 1e9,
+            ..policy
+        }
+        .fastest(|| m += 1);
+        assert_eq!(m, 10);
     }
 }

@@ -5,6 +5,9 @@
 //! (`ode::solve_embedded`). Answers "why not RK5, RK6?": each extra order costs more
 //! f-evaluations per step and pays off once the error asked for is small enough — DOP853 and
 //! Vern9 overtake RK4 at tight errors, while at loose ones RK4 or a fifth-order pair is cheaper.
+//! On a stiff problem file (`problems/vanderpol-1000.ron`) the stiff solvers (`Rodas5p`,
+//! `Radau5`) sweep their tolerance the same way, and DOPRI5 and DOP853 stop where their
+//! stiffness test fires, shown as "stiff: stopped at t = …" rather than grinding for minutes.
 
 use std::sync::atomic::Ordering;
 use std::sync::mpsc::{Receiver, channel};
@@ -20,12 +23,13 @@ use super::style::{self, fmt_num};
 use super::{Param, SlideWidget};
 use crate::deck::widgets::WorkPrecisionSpec;
 use crate::ode::Scheme;
+use crate::ode::problem::Problem;
 
-mod study;
+mod sweeps;
 
-pub use study::{
-    Curve, DETERMINISTIC, H_MAX, MAX_ADAPTIVE_STEPS, Sample, Sweep, TOL_MAX, TOL_MIN, dopri5_fixed,
-    study, tolerances,
+pub use crate::ode::study::{Sample, Sweep, TOL_MAX, TOL_MIN, tolerances};
+pub use sweeps::{
+    Curve, DETERMINISTIC, H_MAX, MAX_ADAPTIVE_STEPS, dopri5_fixed, step_sizes, steps, study,
 };
 
 type Key = (WorkPrecisionSpec, u64, Vec<bool>);
@@ -38,13 +42,13 @@ enum Job {
 }
 
 impl Job {
-    fn sweep(&self) -> Sweep<'_> {
+    fn sweep(&self, spec: &WorkPrecisionSpec, sys: &Problem) -> Sweep<'_> {
         match self {
             Job::Method(m) => match m.adaptive() {
-                Some(pair) => Sweep::Tolerances(pair),
-                None => Sweep::Steps(m.scheme()),
+                Some(adaptive) => Sweep::tolerances(adaptive, MAX_ADAPTIVE_STEPS),
+                None => steps(spec, sys, m.scheme()),
             },
-            Job::Rk5 => Sweep::Steps(Scheme::Tableau(dopri5_fixed())),
+            Job::Rk5 => steps(spec, sys, Scheme::Tableau(dopri5_fixed())),
         }
     }
 }
@@ -119,7 +123,12 @@ impl WorkPrecision {
         self.jobs()
             .into_iter()
             .map(|(mut c, job)| {
-                c.samples = study(&self.spec, &problem, &exact, job.sweep());
+                c.samples = study(
+                    &self.spec,
+                    &problem,
+                    &exact,
+                    &job.sweep(&self.spec, &problem),
+                );
                 c
             })
             .collect()
@@ -146,7 +155,7 @@ impl WorkPrecision {
         std::thread::spawn(move || {
             let exact = truth(&problem, spec.t_end);
             for (mut curve, job) in jobs {
-                curve.samples = study(&spec, &problem, &exact, job.sweep());
+                curve.samples = study(&spec, &problem, &exact, &job.sweep(&spec, &problem));
                 if tx.send(curve).is_err() {
                     return;
                 }
@@ -240,7 +249,10 @@ impl SlideWidget for WorkPrecision {
             }
             for c in &self.results {
                 // whole entries move to the next row; none breaks inside
-                let txt = format!("{} {}", c.name, fmt_num(c.best_error()));
+                let txt = match c.stiff_at() {
+                    Some(t) => format!("{} stiff: stopped at t = {}", c.name, fmt_num(t)),
+                    None => format!("{} {}", c.name, fmt_num(c.best_error())),
+                };
                 let color = style::text_color(ui, c.color);
                 ui.add(
                     egui::Label::new(egui::RichText::new(txt).strong().color(color))
@@ -253,7 +265,8 @@ impl SlideWidget for WorkPrecision {
         let half = (ui.available_width() - ui.spacing().item_spacing.x) / 2.0;
         let height = ui.available_height();
         let results = &self.results;
-        let relative = study::relative_cost(results);
+        let sweeps: Vec<&[Sample]> = results.iter().map(|c| c.samples.as_slice()).collect();
+        let relative = crate::ode::study::relative_cost(&sweeps);
         ui.horizontal_top(|ui| {
             // left: what each run reached for its work; right: the answer to the slide's
             // question, per error asked for, how many times the fastest method's time each
@@ -342,11 +355,16 @@ impl SlideWidget for WorkPrecision {
     /// fixed-step fifth-order weights), `sweep` `h` or `tol`. Wall time is left out: it is the
     /// machine's, not the method's (and a modelled one in headless exports).
     /// Each curve's best error, as the caption prints it, from the whole study (not what
-    /// the background thread has sent so far: export asks before any frame is drawn).
+    /// the background thread has sent so far: export asks before any frame is drawn). An
+    /// explicit pair that its stiffness test stopped at every tolerance reads `stiff_at`
+    /// (the earliest such t) instead.
     fn readouts(&mut self) -> Vec<super::Readout> {
         self.compute()
             .iter()
-            .map(|c| super::Readout::new("best_error", c.key.clone(), c.best_error()))
+            .map(|c| match c.stiff_at() {
+                Some(t) => super::Readout::new("stiff_at", c.key.clone(), t),
+                None => super::Readout::new("best_error", c.key.clone(), c.best_error()),
+            })
             .collect()
     }
 
@@ -368,7 +386,7 @@ impl SlideWidget for WorkPrecision {
 
 #[cfg(test)]
 mod tests {
-    use super::study::tests::{deck, spec};
+    use super::sweeps::tests::{deck, spec};
     use super::*;
 
     #[test]

@@ -6,7 +6,7 @@ use super::doubling::Doubling;
 use super::implicit_trials::{RadauTrial, RodasTrial};
 use super::pair_stepper::{Fast, PairStepper, Slices};
 use super::{Adaptive, Run, Trial, check, drive};
-use crate::ode::fixed::{FixedSolution, FixedSystem};
+use crate::ode::fixed::{AsSystem, FixedSolution, FixedSystem};
 use crate::ode::pairs::{Controller, Pair, with_pair};
 use crate::ode::solve::{Outcome, Solution};
 use crate::ode::{Method, System};
@@ -44,27 +44,11 @@ pub fn solve_embedded<S: System + ?Sized>(
     match method {
         Method::Rodas5p => {
             let mut trial = RodasTrial::new(sys, x0);
-            // RODAS's controller: exponent 1/5 for the order-4 embedded estimate
-            recorded(
-                &mut trial,
-                t0,
-                t_end,
-                &opts,
-                Controller::predictive(5, 6.0, 1.0),
-                sol,
-            )
+            recorded(&mut trial, t0, t_end, &opts, RODAS_CONTROL, sol)
         }
         Method::Radau5 => {
             let mut trial = RadauTrial::new(sys, x0);
-            // radau5.f: err^(1/4), ratio in [1/5, 8], steps kept within 1 … 1.2
-            recorded(
-                &mut trial,
-                t0,
-                t_end,
-                &opts,
-                Controller::predictive(4, 8.0, 1.2),
-                sol,
-            )
+            recorded(&mut trial, t0, t_end, &opts, RADAU_CONTROL, sol)
         }
         _ => with_pair!(
             method,
@@ -79,6 +63,11 @@ pub fn solve_embedded<S: System + ?Sized>(
         ),
     }
 }
+
+/// RODAS's controller: exponent 1/5 for the order-4 embedded estimate.
+const RODAS_CONTROL: Controller = Controller::predictive(5, 6.0, 1.0);
+/// radau5.f: err^(1/4), ratio in [1/5, 8], steps kept within 1 … 1.2.
+const RADAU_CONTROL: Controller = Controller::predictive(4, 8.0, 1.2);
 
 fn control_of<const S: usize, P: Pair<S>>(_: P) -> Controller {
     P::CONTROL
@@ -124,7 +113,9 @@ pub fn solve_embedded_n<const N: usize, S: FixedSystem<N> + ?Sized>(
 }
 
 /// [`solve_embedded_n`] calling `on_step(t, &x)` after every accepted step; a no-op closure
-/// compiles away.
+/// compiles away. The stiff solvers (`rodas5p`, `radau5`) take the same path through the
+/// general system view ([`AsSystem`]): their Newton matrices are sized at run time anyway, and
+/// the system's own Jacobian ([`FixedSystem::jacobian`]) is used where it has one.
 pub fn solve_embedded_n_with<const N: usize, S: FixedSystem<N> + ?Sized>(
     sys: &S,
     method: Method,
@@ -145,6 +136,24 @@ pub fn solve_embedded_n_with<const N: usize, S: FixedSystem<N> + ?Sized>(
     if let Err(outcome) = check(N, t0, &x0, t_end, &opts) {
         sol.outcome = outcome;
         return sol;
+    }
+    let general = AsSystem::<N, &S>(sys);
+    match method {
+        Method::Rodas5p => {
+            let mut trial = RodasTrial::new(&general, &x0);
+            let run = drive(&mut trial, t0, t_end, &opts, RODAS_CONTROL, |t, x| {
+                on_step(t, as_array(x))
+            });
+            return finish_fixed(&trial, run, sol);
+        }
+        Method::Radau5 => {
+            let mut trial = RadauTrial::new(&general, &x0);
+            let run = drive(&mut trial, t0, t_end, &opts, RADAU_CONTROL, |t, x| {
+                on_step(t, as_array(x))
+            });
+            return finish_fixed(&trial, run, sol);
+        }
+        _ => {}
     }
     with_pair!(
         method,

@@ -115,7 +115,7 @@ pub struct Radau5 {
     cont: [Vec<f64>; 3],
     /// f at the accepted state
     pub fx: Vec<f64>,
-    scal: Vec<f64>,
+    inv_weight: Vec<f64>,
     tmp: Vec<f64>,
     tmp2: Vec<f64>,
     fp: Vec<f64>,
@@ -144,7 +144,7 @@ impl Radau5 {
             w: std::array::from_fn(|_| v()),
             cont: std::array::from_fn(|_| v()),
             fx: v(),
-            scal: v(),
+            inv_weight: v(),
             tmp: v(),
             tmp2: v(),
             fp: v(),
@@ -217,8 +217,9 @@ impl Radau5 {
         if self.lu_h != h && self.factor(h).is_err() {
             return Attempt::Singular;
         }
+        // the reciprocal weights: the Newton and error norms multiply
         for i in 0..n {
-            self.scal[i] = tol.atol + tol.rtol * x[i].abs();
+            self.inv_weight[i] = 1.0 / (tol.atol + tol.rtol * x[i].abs());
         }
         // starting values: zero, or the last collocation polynomial extrapolated
         if self.first {
@@ -284,10 +285,10 @@ impl Radau5 {
             newt += 1;
             let mut dyno = 0.0;
             for i in 0..n {
-                let s = self.scal[i];
-                dyno += (self.z[0][i] / s).powi(2)
-                    + (self.z[1][i] / s).powi(2)
-                    + (self.z[2][i] / s).powi(2);
+                let s = self.inv_weight[i];
+                dyno += (self.z[0][i] * s).powi(2)
+                    + (self.z[1][i] * s).powi(2)
+                    + (self.z[2][i] * s).powi(2);
             }
             let dyno = (dyno / (3 * n) as f64).sqrt();
             if !dyno.is_finite() {
@@ -361,11 +362,11 @@ impl Radau5 {
             self.tmp[i] = self.tmp2[i] + self.fx[i];
         }
         self.e1.solve(&mut self.tmp);
-        let norm = |v: &[f64], scal: &[f64]| {
-            let s: f64 = v.iter().zip(scal).map(|(e, s)| (e / s).powi(2)).sum();
+        let norm = |v: &[f64], inv_weight: &[f64]| {
+            let s: f64 = v.iter().zip(inv_weight).map(|(e, s)| (e * s).powi(2)).sum();
             (s / n as f64).sqrt().max(1e-10)
         };
-        let mut err = norm(&self.tmp, &self.scal);
+        let mut err = norm(&self.tmp, &self.inv_weight);
         if err >= 1.0 && (self.first || rejected_before) {
             for i in 0..n {
                 self.tmp[i] += x[i];
@@ -375,7 +376,7 @@ impl Radau5 {
                 self.tmp[i] = self.fp[i] + self.tmp2[i];
             }
             self.e1.solve(&mut self.tmp);
-            err = norm(&self.tmp, &self.scal);
+            err = norm(&self.tmp, &self.inv_weight);
         }
         // NaN (a non-finite f at the filtered point) rejects
         if err.is_nan() { f64::INFINITY } else { err }
