@@ -1,11 +1,13 @@
 //! What the `lectern` binary carries inside it (embedded by `build.rs` from the repository's
 //! folders): the scene shaders, used when a project has no `shaders/` folder of its own, the
-//! water scene, and the starter project `lectern new` writes.
+//! water scene, used when a project has a scene widget but no scene file, and the starter
+//! project `lectern new` writes.
 //!
-//! wgpu's pipelines, hot reload and `lectern check` all read shaders from a folder, so the
-//! bundled shaders are written once to a folder of the user's cache
-//! (`$XDG_CACHE_HOME/lectern/shaders-VERSION`, else `~/.cache/…`, else the temp folder) and
-//! used from there: one way to load a shader, whichever set it is.
+//! wgpu's pipelines, hot reload and `lectern check` all read shaders and scenes from files, so
+//! the bundled ones are written once to a folder of the user's cache
+//! (`$XDG_CACHE_HOME/lectern/bundled-VERSION/{shaders,scenes}`, else `~/.cache/…`, else the
+//! temp folder) and used from there: one way to load a shader or a scene, whichever set it is.
+//! Folders of other versions beside it are removed when it is written.
 
 use std::path::{Path, PathBuf};
 
@@ -27,7 +29,9 @@ pub struct ShaderFolder {
 /// shaders. An error only when the bundled ones cannot be written out.
 pub fn shader_folder_for_scene(scene_path: &Path) -> Result<ShaderFolder, String> {
     let own = crate::paths::project_root(scene_path).join(crate::render::SHADER_DIR);
-    if own.is_dir() {
+    // (the bundled scene's own folder holds the bundled shaders: those count as bundled)
+    let in_bundled = own.starts_with(bundled_root_path());
+    if own.is_dir() && !in_bundled {
         return Ok(ShaderFolder {
             dir: own,
             bundled: false,
@@ -39,14 +43,93 @@ pub fn shader_folder_for_scene(scene_path: &Path) -> Result<ShaderFolder, String
 /// The bundled shaders written out (once per process; a file already there with the same
 /// bytes is kept, so several lectern processes share the folder).
 pub fn bundled_shader_dir() -> Result<PathBuf, String> {
+    bundled_root().map(|root| root.join(crate::render::SHADER_DIR))
+}
+
+/// The scene file a scene widget (or scene mode) draws: `resolved`, the file `written` names
+/// in the project; or, when that is the default scene (`../scenes/water.ron`) and the project
+/// has no such file, the water scene built into lectern (`bundled` set, for `check`'s note).
+/// Its shaders are then looked up from the bundled scene's folder: the bundled ones.
+pub fn scene_file(
+    resolved: Result<PathBuf, crate::paths::PathError>,
+    written: &str,
+) -> Result<SceneFile, String> {
+    let is_default = written == crate::deck::widgets::scene::default_scene();
+    match resolved {
+        Ok(path) if path.is_file() || !is_default => Ok(SceneFile {
+            path,
+            bundled: false,
+        }),
+        Err(e) if !is_default => Err(e.to_string()),
+        _ => bundled_scene_file().map(|path| SceneFile {
+            path,
+            bundled: true,
+        }),
+    }
+}
+
+/// A scene file to draw, and whether it is the one built into lectern.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SceneFile {
+    pub path: PathBuf,
+    pub bundled: bool,
+}
+
+/// The bundled water scene written out, as `scenes/water.ron` in the bundled folder.
+pub fn bundled_scene_file() -> Result<PathBuf, String> {
+    bundled_root().map(|root| root.join(crate::scene::DEFAULT_SCENE))
+}
+
+/// The bundled files' folder, written out once per process (a file already there with the
+/// same bytes is kept, so several lectern processes share it); other versions' folders are
+/// removed then.
+fn bundled_root() -> Result<PathBuf, String> {
     static DIR: std::sync::OnceLock<Result<PathBuf, String>> = std::sync::OnceLock::new();
     DIR.get_or_init(|| {
-        let dir = cache_root().join(format!("shaders-{}", env!("CARGO_PKG_VERSION")));
-        write_files(&dir, SHADERS)
-            .map_err(|e| format!("cannot write the bundled shaders to {}: {e}", dir.display()))?;
-        Ok(dir)
+        let root = bundled_root_path();
+        let cache = cache_root();
+        let name = format!("{BUNDLED_PREFIX}{}", env!("CARGO_PKG_VERSION"));
+        let shaders = root.join(crate::render::SHADER_DIR);
+        write_files(&shaders, SHADERS).map_err(|e| {
+            format!(
+                "cannot write the bundled shaders to {}: {e}",
+                shaders.display()
+            )
+        })?;
+        let scene = [(crate::scene::DEFAULT_SCENE, WATER_SCENE.as_bytes())];
+        write_files(&root, &scene)
+            .map_err(|e| format!("cannot write the bundled scene to {}: {e}", root.display()))?;
+        remove_other_versions(&cache, &name);
+        Ok(root)
     })
     .clone()
+}
+
+/// Where [`bundled_root`] writes the bundled files (nothing written).
+fn bundled_root_path() -> PathBuf {
+    cache_root().join(format!("{BUNDLED_PREFIX}{}", env!("CARGO_PKG_VERSION")))
+}
+
+/// The bundled folders' names: this prefix, then lectern's version. (`shaders-VERSION` was
+/// the name before the scene was bundled too.)
+const BUNDLED_PREFIX: &str = "bundled-";
+const OLD_PREFIXES: [&str; 2] = [BUNDLED_PREFIX, "shaders-"];
+
+/// Removes the bundled folders of other lectern versions from `cache`, keeping `keep`; a
+/// folder another version still uses is written again by it when it next starts.
+fn remove_other_versions(cache: &Path, keep: &str) {
+    let Ok(entries) = std::fs::read_dir(cache) else {
+        return;
+    };
+    for e in entries.flatten() {
+        let name = e.file_name().to_string_lossy().into_owned();
+        let ours = OLD_PREFIXES.iter().any(|p| name.starts_with(p));
+        if ours && name != keep && e.path().is_dir() {
+            if let Err(err) = std::fs::remove_dir_all(e.path()) {
+                tracing::debug!("cannot remove {}: {err}", e.path().display());
+            }
+        }
+    }
 }
 
 fn cache_root() -> PathBuf {
@@ -118,5 +201,42 @@ mod tests {
         let folder = shader_folder_for_scene(&scene).unwrap();
         assert!(!folder.bundled);
         assert_eq!(folder.dir, p.path().canonicalize().unwrap().join("shaders"));
+    }
+
+    #[test]
+    fn the_default_scene_falls_back_to_the_bundled_one_and_a_named_one_does_not() {
+        let p = tempfile::tempdir().unwrap();
+        let deck_dir = p.path().join("slides");
+        std::fs::create_dir_all(&deck_dir).unwrap();
+        let default = crate::deck::widgets::scene::default_scene();
+        let resolve = |w: &str| crate::paths::resolve_in(&deck_dir, w);
+        let f = scene_file(resolve(&default), &default).unwrap();
+        assert!(f.bundled);
+        assert_eq!(std::fs::read_to_string(&f.path).unwrap(), WATER_SCENE);
+        // the bundled scene is drawn with the bundled shaders
+        assert!(shader_folder_for_scene(&f.path).unwrap().bundled);
+        // a scene the deck names by hand must exist: a typo is not papered over
+        let named = scene_file(resolve("../scenes/mine.ron"), "../scenes/mine.ron").unwrap();
+        assert!(!named.bundled && !named.path.exists());
+        // the project's own scene file wins
+        std::fs::create_dir_all(p.path().join("scenes")).unwrap();
+        std::fs::write(p.path().join("scenes/water.ron"), "()").unwrap();
+        let own = scene_file(resolve(&default), &default).unwrap();
+        assert!(!own.bundled && own.path.ends_with("scenes/water.ron"));
+    }
+
+    #[test]
+    fn other_versions_bundled_folders_are_removed() {
+        let cache = tempfile::tempdir().unwrap();
+        for name in ["shaders-0.0.1", "bundled-0.0.2", "bundled-9.9.9", "notes"] {
+            std::fs::create_dir_all(cache.path().join(name).join("x")).unwrap();
+        }
+        remove_other_versions(cache.path(), "bundled-9.9.9");
+        let mut left: Vec<String> = std::fs::read_dir(cache.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        left.sort();
+        assert_eq!(left, vec!["bundled-9.9.9", "notes"]);
     }
 }

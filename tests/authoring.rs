@@ -233,6 +233,51 @@ fn a_shaders_folder_missing_a_shader_fails_check_at_the_scene_widget() {
     assert!(!said.contains("shaders built into lectern"), "{said}");
 }
 
+/// A project with a Scene widget but no scene file: the water scene built into lectern is
+/// drawn (and `check` says so), as with the shaders; `check` and `export` agree.
+#[test]
+fn a_project_without_its_scene_file_uses_the_bundled_scene() {
+    let (tmp, project) = new_project();
+    std::fs::remove_dir_all(project.join("scenes")).unwrap();
+    let out = lectern(&project, &["check", "slides/talk.ron"]);
+    let said = text(&out);
+    assert!(out.status.success(), "{said}");
+    assert!(said.contains("water scene built into lectern"), "{said}");
+    assert_eq!(
+        said.matches("water scene built into lectern").count(),
+        1,
+        "one note, not one per widget: {said}"
+    );
+    let out_dir = tmp_path(&tmp).join("export");
+    let export = lectern(
+        &project,
+        &[
+            "export",
+            "slides/talk.ron",
+            "--out",
+            out_dir.to_str().unwrap(),
+            "--size",
+            "480x270",
+        ],
+    );
+    assert!(export.status.success(), "{}", text(&export));
+    assert_eq!(pngs(&out_dir), 7);
+    // a scene named by hand must exist: a typo is reported, not replaced
+    let deck = project.join("slides/talk.ron");
+    let written = std::fs::read_to_string(&deck).unwrap();
+    std::fs::write(
+        &deck,
+        written.replace("../scenes/water.ron", "../scenes/watr.ron"),
+    )
+    .unwrap();
+    let out = lectern(&project, &["check", "slides/talk.ron"]);
+    assert!(
+        !out.status.success() && text(&out).contains("watr.ron"),
+        "{}",
+        text(&out)
+    );
+}
+
 #[test]
 fn one_unparsable_slide_leaves_the_others_presenting_and_exporting() {
     let (_tmp, project) = new_project();

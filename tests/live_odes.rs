@@ -599,19 +599,26 @@ fn typing_on_the_presenter_view_changes_the_plot_on_enter_and_ctrl_s_writes_it_b
     assert_eq!(field.value().as_deref(), Some(typed));
     assert!(h.query_by_label_contains("column 18").is_none());
     assert_eq!(euler(&mut h), after);
-    // Ctrl+S writes the last good equation into the deck, changing only those bytes
+    // Ctrl+S writes the last good equation into the deck, changing only those bytes, and
+    // takes the dropped exact solution out of it (it solved the old equation: left in, the
+    // next load would measure the typed equation against it)
     h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::S);
     h.run_steps(2);
     let written = std::fs::read_to_string(&path).unwrap();
+    let exact_field =
+        &FORCED_INLINE[FORCED_INLINE.find(", exact:").unwrap()..FORCED_INLINE.len() - 2];
     assert_eq!(
         written,
-        original.replacen("\"cos(t) - x\"", "\"-2*x + cos(3*t)\"", 1)
+        original
+            .replacen("\"cos(t) - x\"", "\"-2*x + cos(3*t)\"", 1)
+            .replacen(exact_field, "", 1)
     );
     let deck = parse_deck(&written, &path).unwrap();
     match &deck.slides[0].body[0] {
         lectern::deck::Block::Widget(WidgetSpec::SlopeField(s)) => match &s.ode {
             lectern::deck::widgets::OdeSource::Inline(def) => {
-                assert_eq!(def.rhs, vec![typed.to_string()])
+                assert_eq!(def.rhs, vec![typed.to_string()]);
+                assert_eq!(def.exact, None, "the stale exact solution is gone");
             }
             other => panic!("{other:?}"),
         },
@@ -762,7 +769,17 @@ fn parameters_and_typed_equations_write_back_to_the_deck_or_the_problem_file() {
             .unwrap()
             .set_expr(ExprSlot::Rhs(0), "lambda*y + 0.1")
     );
-    assert_eq!(write_back(&path, &slide, &mut state), Ok(3));
+    // the file's exact solution solved `lambda*y`, not the typed equation: typing dropped it,
+    // and the write-back takes it out of the problem file (its own line goes)
+    assert!(
+        state
+            .widget_at(&[0])
+            .unwrap()
+            .ode()
+            .unwrap()
+            .drops_files_exact()
+    );
+    assert_eq!(write_back(&path, &slide, &mut state), Ok(4));
     assert_eq!(
         std::fs::read_to_string(&path).unwrap(),
         deck_before.replace("{\"k\": 1.0}", "{\"k\": 2.0}")
@@ -772,6 +789,7 @@ fn parameters_and_typed_equations_write_back_to_the_deck_or_the_problem_file() {
         problem_before
             .replace("{\"lambda\": -5.0}", "{\"lambda\": -3.0}")
             .replace("[\"lambda*y\"]", "[\"lambda*y + 0.1\"]")
+            .replace("    exact: Some([\"y*exp(lambda*(t - t0))\"]),\n", "")
     );
     // the running app re-reads the problem file when the watcher reports it: nothing is a
     // tweak any more (the deck itself reloads through its own file, as before)
@@ -797,4 +815,6 @@ fn parameters_and_typed_equations_write_back_to_the_deck_or_the_problem_file() {
             .rhs,
         vec!["lambda*y + 0.1".to_string()]
     );
+    let reread = fresh.widget_at(&[0]).unwrap().ode().unwrap();
+    assert_eq!(reread.def().unwrap().exact, None, "no stale exact solution");
 }

@@ -103,6 +103,28 @@ fn bookmarks_store_recall_and_declared() {
     assert_eq!(state.param(&[0], H), Some(ParamSnapshot::F64(0.8)));
 }
 
+/// A parameter written `ζ` in the equation answers to `zeta` in a bookmark (and the other way
+/// round, `ω` for `omega`), as names in expressions do: no Greek keyboard needed.
+#[test]
+fn bookmarks_name_greek_parameters_in_ascii_and_the_other_way_round() {
+    let text = r#"(
+    title: "t",
+    slides: [(id: "osc", title: "Osc", body: [Widget(SlopeField((ode: Inline((vars: ["x", "v"], rhs: ["v", "-2*ζ*omega*v - omega^2*x"], params: {"ζ": 0.15, "omega": 2.0}, ranges: {"ζ": (0.0, 1.5), "omega": (0.5, 4.0)}, initial: [1.0, 0.0])), h: 0.1, t_end: 5.0, exact: false)))])],
+    bookmarks: [(key: 1, slide: "osc", set: [("zeta", 0.5), ("ω", 3.0)])],
+)"#;
+    let (_dir, _path, s) = session(text);
+    let slide = s.deck().slides[0].clone();
+    let mut state = SlideState::default();
+    apply_declared(&s.deck().bookmarks[0], &slide, &mut state);
+    assert_eq!(state.param(&[0], "ζ"), Some(ParamSnapshot::F64(0.5)));
+    assert_eq!(state.param(&[0], "omega"), Some(ParamSnapshot::F64(3.0)));
+    // the tweaks' own lookups take either spelling too
+    assert!(state.set_param(&[0], "ω", ParamSnapshot::F64(2.5)));
+    assert_eq!(state.param(&[0], "omega"), Some(ParamSnapshot::F64(2.5)));
+    assert_eq!(state.param(&[0], "zeta"), Some(ParamSnapshot::F64(0.5)));
+    assert_eq!(state.param(&[0], "eta"), None, "no near miss");
+}
+
 #[test]
 fn write_back_changes_only_the_tweaked_bytes_and_failure_leaves_the_original() {
     let original = deck_text("0.1", "3.0", "");

@@ -23,6 +23,7 @@ fn typeset(src: &str) -> (Result<(u32, u32), String>, Duration) {
     let r = pool().typeset(Request {
         src: src.to_owned(),
         syntax: MathSyntax::Typst,
+        style: Default::default(),
         size_px: 40.0,
         rgba: [0, 0, 0, 255],
     });
@@ -126,6 +127,7 @@ fn ordinary_formulas_match_in_process_typesetting() {
         .typeset(Request {
             src: src.into(),
             syntax: MathSyntax::Typst,
+            style: Default::default(),
             size_px: 40.0,
             rgba: [0, 0, 0, 255],
         })

@@ -98,6 +98,7 @@ fn a_slide_whose_formula_is_typesetting_is_drawn_at_once_and_the_formula_follows
             let req = lectern::math::wire::Request {
                 src: format!("#range({}).map(i => i).len()", 100_000_000 + i),
                 syntax: lectern::math::MathSyntax::Typst,
+                style: Default::default(),
                 size_px: 20.0,
                 rgba: [0, 0, 0, 255],
             };

@@ -1,17 +1,16 @@
 //! Slide body blocks: paragraphs, bullets, tables, maths, images, live widgets and columns, laid out top
 //! to bottom on the canvas. Text blocks take the height they need; widgets share what is left.
 
-use egui::text::{LayoutJob, TextFormat};
 use egui::{Align, Rect, Sense, UiBuilder, vec2};
 
 use super::block_ctx::BlockCtx;
 use super::block_problems::{block_ron_path, located_problem};
 use super::formula_view::{formula, math_source_height, math_ui, placeholder_height};
 use super::images;
+use super::inline_text::{Paragraph, paragraph};
 use super::slide_state::SlideState;
-use super::theme::{self, Look, size};
+use super::theme::size;
 use crate::deck::Block;
-use crate::deck::markup::{Inline, inline_spans};
 
 /// Lays out `blocks` in `ui`; `path` is where they sit in the slide (for widget identity).
 pub(crate) fn blocks_ui(
@@ -70,16 +69,12 @@ fn measure(
 ) -> Option<f32> {
     let look = &bctx.look;
     match block {
-        Block::Text(t) => Some(paragraph_galley(ui, t, width, look, Align::Min).size().y),
+        Block::Text(t) => Some(paragraph(ui, t, width, look, Align::Min).size().y),
         Block::Bullets(items) => {
             let indent = look.scaled(bullet_indent());
             let h: f32 = items
                 .iter()
-                .map(|t| {
-                    paragraph_galley(ui, t, width - indent, look, Align::Min)
-                        .size()
-                        .y
-                })
+                .map(|t| paragraph(ui, t, width - indent, look, Align::Min).size().y)
                 .sum();
             Some(h + look.scaled(size::BULLET_GAP) * items.len().saturating_sub(1) as f32)
         }
@@ -132,17 +127,13 @@ fn block_ui(
     let width = ui.available_width();
     match block {
         Block::Text(t) => {
-            let galley = paragraph_galley(ui, t, width, look, align);
-            let (rect, _) = ui.allocate_exact_size(vec2(width, galley.size().y), Sense::hover());
-            let x = if align == Align::Center {
-                rect.center().x
-            } else {
-                rect.left()
-            };
-            ui.painter()
-                .galley(egui::pos2(x, rect.top()), galley, look.palette.text);
+            let para = paragraph(ui, t, width, look, align);
+            let (rect, _) = ui.allocate_exact_size(vec2(width, para.size().y), Sense::hover());
+            para.paint(ui.painter(), rect, look.palette.text);
+            let at = format!("{}.0", block_ron_path(bctx.slide_index, path));
+            note_inline_errors(ui, bctx, &at, t, &para, state);
         }
-        Block::Bullets(items) => bullets_ui(ui, items, look),
+        Block::Bullets(items) => bullets_ui(ui, items, path, bctx, state),
         Block::Table { header, rows } => super::table_view::table_ui(ui, header, rows, look),
         Block::Math { src, latex } => math_ui(ui, bctx, path, src, *latex, state),
         Block::Image { path: p, width: w } => {
@@ -241,16 +232,23 @@ fn bullet_indent() -> f32 {
     size::BODY * 1.1
 }
 
-fn bullets_ui(ui: &mut egui::Ui, items: &[String], look: &Look) {
+fn bullets_ui(
+    ui: &mut egui::Ui,
+    items: &[String],
+    path: &[usize],
+    bctx: &BlockCtx,
+    state: &mut SlideState,
+) {
+    let look = &bctx.look;
     let width = ui.available_width();
     let indent = look.scaled(bullet_indent());
     for (i, item) in items.iter().enumerate() {
         if i > 0 {
             ui.add_space(look.scaled(size::BULLET_GAP));
         }
-        let galley = paragraph_galley(ui, item, width - indent, look, Align::Min);
-        let first_row_h = galley.rows.first().map_or(0.0, |r| r.height());
-        let (rect, _) = ui.allocate_exact_size(vec2(width, galley.size().y), Sense::hover());
+        let para = paragraph(ui, item, width - indent, look, Align::Min);
+        let first_row_h = para.first_row_height();
+        let (rect, _) = ui.allocate_exact_size(vec2(width, para.size().y), Sense::hover());
         // A small accent square, centred on the first line's x-height.
         let c = egui::pos2(
             rect.left() + look.scaled(12.0),
@@ -261,42 +259,27 @@ fn bullets_ui(ui: &mut egui::Ui, items: &[String], look: &Look) {
             look.scaled(2.0),
             look.palette.accent,
         );
-        ui.painter().galley(
-            rect.left_top() + vec2(indent, 0.0),
-            galley,
-            look.palette.text,
-        );
+        let text_rect = Rect::from_min_max(rect.min + vec2(indent, 0.0), rect.max);
+        para.paint(ui.painter(), text_rect, look.palette.text);
+        let at = format!("{}[{i}]", block_ron_path(bctx.slide_index, path));
+        note_inline_errors(ui, bctx, &at, item, &para, state);
     }
 }
 
-/// A paragraph with light inline markup: `*emphasis*` in italics, `` `code` `` in monospace.
-pub(crate) fn paragraph_galley(
+/// The inline formulas of `written` (the string at `ron_path`) that did not typeset, as
+/// problems at their character in the deck file.
+fn note_inline_errors(
     ui: &egui::Ui,
-    text: &str,
-    width: f32,
-    look: &Look,
-    align: Align,
-) -> std::sync::Arc<egui::Galley> {
-    let ctx = ui.ctx();
-    let regular = look.font(theme::SERIF, size::BODY, ctx);
-    let italic = look.font(theme::SERIF_ITALIC, size::BODY, ctx);
-    let mono = look.font(theme::MONO, size::BODY * 0.85, ctx);
-    let mut job = LayoutJob {
-        halign: align,
-        ..Default::default()
-    };
-    job.wrap.max_width = width.max(1.0);
-    for (span, kind) in inline_spans(text) {
-        let font = match kind {
-            Inline::Plain => regular.clone(),
-            Inline::Emphasis => italic.clone(),
-            Inline::Code => mono.clone(),
-        };
-        let mut format = TextFormat::simple(font, look.palette.text);
-        if kind == Inline::Emphasis {
-            format.color = look.palette.title;
-        }
-        job.append(span, 0.0, format);
+    bctx: &BlockCtx,
+    ron_path: &str,
+    written: &str,
+    para: &Paragraph,
+    state: &mut SlideState,
+) {
+    for (start_char, e) in &para.errors {
+        let col = start_char + e.col.unwrap_or(1);
+        let message = crate::math::deck::message(e);
+        let line = located_problem(ui.ctx(), bctx, ron_path, written, Some(col), message);
+        state.note_problem(line);
     }
-    ui.painter().layout_job(job)
 }

@@ -103,8 +103,14 @@ pub(crate) fn prefetch_formulas(
         return;
     }
     let em = em_px(ctx, look);
+    // inline formulas are set at the body text's size and colour (see `inline_text`)
+    let inline_em = look.scaled(size::BODY) * ctx.pixels_per_point();
     for f in crate::math::deck::formulas(deck, Some(slides)) {
-        cache.prefetch(ctx, f.src, f.syntax, em, look.palette.title);
+        let (em, color) = match f.style {
+            crate::math::MathStyle::Display => (em, look.palette.title),
+            crate::math::MathStyle::Inline => (inline_em, look.palette.text),
+        };
+        cache.prefetch(ctx, f.src, f.syntax, f.style, em, color);
     }
 }
 

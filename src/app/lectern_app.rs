@@ -390,13 +390,17 @@ pub(super) fn scene_panel_ui(
     }
 }
 
-/// `scenes/water.ron` beside the deck's folder (`slides/../scenes`), else under the current one.
+/// `scenes/water.ron` beside the deck's folder (`slides/../scenes`), else under the current
+/// one, else the water scene built into lectern.
 fn default_scene_path(session: &DeckSession) -> PathBuf {
     let beside = session.folder().join("../scenes/water.ron");
+    let here = PathBuf::from(crate::scene::DEFAULT_SCENE);
     if beside.exists() {
         beside
+    } else if here.exists() {
+        here
     } else {
-        PathBuf::from("scenes/water.ron")
+        crate::bundled::bundled_scene_file().unwrap_or(here)
     }
 }
 

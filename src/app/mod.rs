@@ -11,6 +11,7 @@ pub mod frame_stats;
 mod images;
 pub mod ink;
 pub mod ink_draw;
+mod inline_text;
 pub mod keys;
 mod lectern_app;
 mod ode_editor;

@@ -187,21 +187,13 @@ impl SlideState {
         let Some(slot) = self.widgets.get_mut(path) else {
             return false;
         };
-        slot.widget
-            .params()
-            .into_iter()
-            .find(|p| p.id == id)
-            .is_some_and(|mut p| p.set(value).is_ok())
+        params::find_param(slot.widget.params(), id).is_some_and(|mut p| p.set(value).is_ok())
     }
 
     /// One value by widget path and parameter id.
     pub fn param(&mut self, path: &[usize], id: &str) -> Option<ParamSnapshot> {
         let slot = self.widgets.get_mut(path)?;
-        slot.widget
-            .params()
-            .iter()
-            .find(|p| p.id == id)
-            .map(|p| p.get())
+        params::find_param(slot.widget.params(), id).map(|p| p.get())
     }
 
     /// `R`: every widget back to the file's values.
@@ -214,11 +206,7 @@ impl SlideState {
     /// Where write-back writes parameter `id` of the widget at `path`.
     pub fn write_target(&mut self, path: &[usize], id: &str) -> Option<crate::widgets::WriteTo> {
         let slot = self.widgets.get_mut(path)?;
-        slot.widget
-            .params()
-            .into_iter()
-            .find(|p| p.id == id)
-            .map(|p| p.write)
+        params::find_param(slot.widget.params(), id).map(|p| p.write)
     }
 
     /// The values that differ from the file's, by widget path: what write-back writes.

@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use egui::{Align, Sense, Stroke, vec2};
 
-use super::blocks::paragraph_galley;
+use super::inline_text::text_galley;
 use super::theme::{self, Look, size};
 
 /// Space either side of a cell's text, and above and below each row, in canvas points.
@@ -25,11 +25,7 @@ fn column_widths(ui: &egui::Ui, cells: &[&[String]], width: f32, look: &Look) ->
             cells
                 .iter()
                 .filter_map(|r| r.get(c))
-                .map(|t| {
-                    paragraph_galley(ui, t, f32::INFINITY, look, Align::Min)
-                        .size()
-                        .x
-                })
+                .map(|t| text_galley(ui, t, f32::INFINITY, look, Align::Min).size().x)
                 .fold(0.0, f32::max)
                 + 2.0 * look.scaled(CELL_PAD_X)
         })
@@ -69,7 +65,7 @@ fn row_galleys(
                 job.halign = Align::Min;
                 ui.painter().layout_job(job)
             } else {
-                paragraph_galley(ui, t, inner, look, Align::Min)
+                text_galley(ui, t, inner, look, Align::Min)
             }
         })
         .collect()

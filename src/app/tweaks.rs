@@ -116,6 +116,19 @@ pub fn edits_for(slide: &Slide, state: &mut SlideState) -> Result<Edits, String>
     }
     for (path, _, ode) in state.odes() {
         let file = ode.file().map(Path::to_path_buf);
+        // a typed right-hand side whose file's exact solution was dropped: it goes from the
+        // file too, or the next load would measure the new equation against the old solution
+        if ode.drops_files_exact() {
+            match &file {
+                Some(f) => out.push_file_edit(f, "exact".into(), NewValue::RemoveField),
+                None => out.deck.push(ValueEdit {
+                    slide: id.clone(),
+                    block: path.clone(),
+                    param: "ode.exact".into(),
+                    value: NewValue::RemoveField,
+                }),
+            }
+        }
         for (slot, text) in ode.typed() {
             match &file {
                 Some(f) => out.push_file_edit(f, slot.def_path(), NewValue::Str(text)),

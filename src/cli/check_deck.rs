@@ -17,7 +17,7 @@ use std::path::Path;
 
 use crate::deck::{Block, Deck, IMAGE_WIDTH_RANGE, parse_deck_file};
 use crate::diag::Diagnostic;
-use crate::math::{MathError, MathSyntax};
+use crate::math::{MathError, MathStyle, MathSyntax};
 use crate::ron_tree::{self, Node};
 use crate::widgets::{ParamValue, WidgetSpec, WriteTo};
 
@@ -28,7 +28,7 @@ const CHECK_EM_PX: f32 = 40.0;
 /// checked again) is typeset once.
 #[derive(Default)]
 pub struct DeckChecker {
-    formulas: HashMap<(String, MathSyntax), Result<(), MathError>>,
+    formulas: HashMap<(String, MathSyntax, MathStyle), Result<(), MathError>>,
     /// Typeset formulas (default). Off only where a test needs thousands of decks per second.
     pub skip_typesetting: bool,
 }
@@ -104,7 +104,9 @@ impl DeckChecker {
             }
         }
         walk.problems.sort_by_key(|d| (d.line, d.col));
-        walk.notes.dedup();
+        // one line per note, in the order first said (two scene widgets say the same)
+        let mut seen = std::collections::HashSet::new();
+        walk.notes.retain(|n| seen.insert(n.clone()));
         DeckCheck {
             problems: walk.problems,
             notes: walk.notes,
@@ -118,7 +120,11 @@ impl DeckChecker {
         let all = crate::math::deck::formulas(deck, None);
         let new: Vec<_> = all
             .iter()
-            .filter(|f| !self.formulas.contains_key(&(f.src.to_owned(), f.syntax)))
+            .filter(|f| {
+                !self
+                    .formulas
+                    .contains_key(&(f.src.to_owned(), f.syntax, f.style))
+            })
             .filter(|_| !self.skip_typesetting)
             .map(|f| {
                 let req = f.request(CHECK_EM_PX, [0, 0, 0, 255]);
@@ -127,10 +133,11 @@ impl DeckChecker {
             .collect();
         for (f, job) in new {
             let verdict = job.wait().map(|_| ());
-            self.formulas.insert((f.src.to_owned(), f.syntax), verdict);
+            self.formulas
+                .insert((f.src.to_owned(), f.syntax, f.style), verdict);
         }
         for f in &all {
-            if let Some(Err(e)) = self.formulas.get(&(f.src.to_owned(), f.syntax)) {
+            if let Some(Err(e)) = self.formulas.get(&(f.src.to_owned(), f.syntax, f.style)) {
                 let d = crate::math::deck::diagnostic(walk.file, walk.text, f, e);
                 walk.push(d);
             }
@@ -292,7 +299,7 @@ impl Walk<'_> {
     /// note). A missing or broken shader is a problem at the widget's scene path, so a deck
     /// that checks is a deck whose scene starts.
     fn scene_shaders(&mut self, written: &str, at: &str) {
-        let Ok(scene_path) = crate::paths::resolve_for(self.file, written) else {
+        let Some(scene_path) = self.scene_file(written) else {
             return;
         };
         let scene_at = format!("{at}.scene");
@@ -342,8 +349,25 @@ impl Walk<'_> {
 
     /// The simulation loop's body must exist in its scene (the scene file itself is checked
     /// with the deck's files; a scene that does not load is reported there).
+    /// The scene file a widget naming `written` draws (the project's, or the bundled water
+    /// scene when the project has none: then a note says so); `None` when it cannot be found,
+    /// which the deck's file check reports at the path.
+    fn scene_file(&mut self, written: &str) -> Option<std::path::PathBuf> {
+        let resolved = crate::paths::resolve_for(self.file, written);
+        let f = crate::bundled::scene_file(resolved, written).ok()?;
+        if f.bundled {
+            self.notes.push(format!(
+                "{}: the scene widget uses the water scene built into lectern ({} has no {}; `lectern new` writes a copy to edit)",
+                self.file.display(),
+                crate::paths::project_root(self.file).display(),
+                crate::scene::DEFAULT_SCENE,
+            ));
+        }
+        Some(f.path)
+    }
+
     fn simulation_body(&mut self, written: &str, body: usize, at: &str) {
-        let Ok(full) = crate::paths::resolve_for(self.file, written) else {
+        let Some(full) = self.scene_file(written) else {
             return;
         };
         let Ok(scene) = crate::scene::load_scene(&full) else {

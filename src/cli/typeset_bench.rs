@@ -13,7 +13,7 @@ use crate::app::SlideState;
 use crate::app::slide_view::slide_ui;
 use crate::deck::{Deck, load_deck};
 use crate::math::worker::{Bounds, WorkerProcess};
-use crate::math::{MathCache, MathSyntax, pool, render_formula, set_worker_program};
+use crate::math::{MathCache, MathSyntax, pool, set_worker_program};
 
 /// Measure typesetting costs on a deck.
 #[derive(Debug, clap::Args)]
@@ -155,7 +155,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         let (mut a, mut b) = (Vec::new(), Vec::new());
         for _ in 0..=reps {
             let t = Instant::now();
-            let r = render_formula(&req.src, req.syntax, req.size_px, req.rgba);
+            let r = req.render();
             a.push(ms(t.elapsed()));
             if a.len() == 1 && std::env::var_os("LECTERN_BENCH_HEIGHTS").is_some() {
                 let h = r.map_or(0.0, |r| r.height as f32 / em_px);

@@ -89,8 +89,15 @@ pub fn string_position(
 pub fn check_deck_files(file: &Path, text: &str, deck: &Deck) -> Vec<Diagnostic> {
     let mut out = Vec::new();
     for r in file_refs(deck) {
-        let problem = match crate::paths::resolve_for(file, r.written) {
-            Err(e) => Some(e.to_string()),
+        let resolved = crate::paths::resolve_for(file, r.written);
+        // a scene widget left at the default scene draws the bundled one when the project has
+        // none (the deck check's notes say so)
+        let resolved = match r.kind {
+            FileKind::Scene => crate::bundled::scene_file(resolved, r.written).map(|f| f.path),
+            FileKind::Image => resolved.map_err(|e| e.to_string()),
+        };
+        let problem = match resolved {
+            Err(e) => Some(e),
             Ok(path) if !path.is_file() => Some(format!("`{}`: no such file", r.written)),
             Ok(path) => match r.kind {
                 FileKind::Image => crate::image_file::decode(&path).err(),

@@ -15,6 +15,8 @@ pub enum NewValue {
     Raw(String),
     /// A string, written as a RON string literal (quotes and backslashes escaped).
     Str(String),
+    /// The field at the path goes, with its comma (and its line, if it had one of its own).
+    RemoveField,
 }
 
 /// One value to write: `param` (a [`ron_tree`] path inside the widget: `h`, `start.1`,
@@ -66,6 +68,11 @@ pub fn apply_at(text: &str, edits: &[(String, NewValue)]) -> Result<String, Stri
         ron_tree::parse(text).map_err(|e| format!("the file does not parse: {}", e.message))?;
     let mut spans: Vec<(usize, usize, String)> = Vec::new();
     for (path, value) in edits {
+        if *value == NewValue::RemoveField {
+            let (a, b) = field_span(text, &tree, path)?;
+            spans.push((a, b, String::new()));
+            continue;
+        }
         let node = tree.at(path).ok_or_else(|| {
             format!(
                 "`{path}` is not written in the file (only values in the file can be written back)"
@@ -84,6 +91,7 @@ pub fn apply_at(text: &str, edits: &[(String, NewValue)]) -> Result<String, Stri
                 }
                 ron_string(v)
             }
+            NewValue::RemoveField => unreachable!("handled above"),
         };
         spans.push((node.span.start, node.span.end, new));
     }
@@ -100,6 +108,41 @@ pub fn apply_at(text: &str, edits: &[(String, NewValue)]) -> Result<String, Stri
     }
     out.push_str(&text[at..]);
     Ok(out)
+}
+
+/// The bytes to remove for the field at `path` (`exact`, `slides[2].body[0].ode.exact`): its
+/// name, value and the comma after it, and the whole line when the field had it to itself.
+fn field_span(text: &str, tree: &Node, path: &str) -> Result<(usize, usize), String> {
+    let (parent, name) = match path.rsplit_once('.') {
+        Some((parent, name)) => (tree.at(parent), name),
+        None => (Some(tree), path),
+    };
+    let entry = parent
+        .and_then(|p| p.field_entry(name))
+        .ok_or_else(|| format!("`{path}` is not written in the file"))?;
+    let start = entry.name_span.start;
+    let mut end = entry.value.span.end;
+    let after = &text[end..];
+    let ws = after.len() - after.trim_start_matches([' ', '\t']).len();
+    let mut start = start;
+    if after[ws..].starts_with(',') {
+        end += ws + 1;
+    } else {
+        // the last field: the comma before it goes instead
+        let before = text[..start].trim_end();
+        if before.ends_with(',') {
+            start = before.len() - 1;
+        }
+    }
+    let line_start = text[..start].rfind('\n').map_or(0, |i| i + 1);
+    let rest = &text[end..];
+    let line_end = rest.find('\n').map_or(text.len(), |i| end + i + 1);
+    let alone = text[line_start..start].trim().is_empty() && text[end..line_end].trim().is_empty();
+    if alone {
+        return Ok((line_start, line_end));
+    }
+    let spaces = text[end..].len() - text[end..].trim_start_matches([' ', '\t']).len();
+    Ok((start, end + spaces))
 }
 
 /// `s` as a RON string literal.
@@ -197,5 +240,20 @@ mod tests {
                 .unwrap_err()
                 .contains("no slide")
         );
+    }
+
+    #[test]
+    fn a_removed_field_takes_its_comma_and_its_own_line() {
+        let file = "(\n    vars: [\"x\"],\n    rhs: [\"-x\"],\n    exact: Some([\"exp(-t)\"]),\n    initial: [1.0],\n)\n";
+        let out = apply_at(file, &[("exact".into(), NewValue::RemoveField)]).unwrap();
+        assert_eq!(out, file.replace("    exact: Some([\"exp(-t)\"]),\n", ""));
+        let inline = "(w: S((ode: Inline((rhs: [\"-x\"], exact: [\"exp(-t)\"], initial: [1.0])))))";
+        let out = apply_at(inline, &[("w.ode.exact".into(), NewValue::RemoveField)]).unwrap();
+        assert_eq!(out, inline.replace("exact: [\"exp(-t)\"], ", ""));
+        let last = "(rhs: [\"-x\"], exact: [\"e\"])";
+        let out = apply_at(last, &[("exact".into(), NewValue::RemoveField)]).unwrap();
+        assert_eq!(out, "(rhs: [\"-x\"])");
+        assert!(ron_tree::parse(&out).is_ok(), "{out}");
+        assert!(apply_at(last, &[("nope".into(), NewValue::RemoveField)]).is_err());
     }
 }

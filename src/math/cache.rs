@@ -10,13 +10,14 @@ use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 
 use super::pool::{Job, Notify, Poll, pool};
-use super::typeset::{MathError, MathSyntax, RenderedFormula};
+use super::typeset::{MathError, MathStyle, MathSyntax, RenderedFormula};
 use super::wire::Request;
 
 #[derive(Debug, Clone, PartialEq, Eq, Hash)]
 struct Key {
     src: String,
     syntax: MathSyntax,
+    style: MathStyle,
     /// Size in physical pixels per em, as f32 bits (exact-match key).
     size_bits: u32,
     rgba: [u8; 4],
@@ -27,6 +28,7 @@ impl Key {
         Request {
             src: self.src.clone(),
             syntax: self.syntax,
+            style: self.style,
             size_px: f32::from_bits(self.size_bits),
             rgba: self.rgba,
         }
@@ -34,11 +36,13 @@ impl Key {
 }
 
 /// A formula on the GPU. `size_px` is its size in physical pixels when typeset at `em_px`
-/// pixels per em; divide by `pixels_per_point` to lay it out in egui points.
+/// pixels per em, its baseline `baseline_px` below its top; divide by `pixels_per_point` to
+/// lay it out in egui points.
 #[derive(Clone)]
 pub struct Formula {
     pub texture: egui::TextureHandle,
     pub size_px: egui::Vec2,
+    pub baseline_px: f32,
     pub em_px: f32,
 }
 
@@ -137,9 +141,24 @@ impl MathCache {
         size_px: f32,
         color: egui::Color32,
     ) -> Result<Formula, MathError> {
-        let key = key(src, syntax, size_px, color);
+        let key = key(src, syntax, MathStyle::Display, size_px, color);
         self.lookup(ctx, key, true, true)
             .expect("a waiting lookup always has a result")
+    }
+
+    /// An inline formula (`$…$` in a paragraph) for `src`: cached like display ones; waits
+    /// only where the cache [`waits`](Self::waits), else `None` while it is being typeset.
+    pub fn inline(
+        &mut self,
+        ctx: &egui::Context,
+        src: &str,
+        syntax: MathSyntax,
+        size_px: f32,
+        color: egui::Color32,
+    ) -> Option<Result<Formula, MathError>> {
+        let wait = self.wait;
+        let key = key(src, syntax, MathStyle::Inline, size_px, color);
+        self.lookup(ctx, key, true, wait)
     }
 
     /// Asks for a formula the lecturer will probably see soon (the next slides), at low
@@ -149,10 +168,11 @@ impl MathCache {
         ctx: &egui::Context,
         src: &str,
         syntax: MathSyntax,
+        style: MathStyle,
         size_px: f32,
         color: egui::Color32,
     ) {
-        let _ = self.lookup(ctx, key(src, syntax, size_px, color), false, false);
+        let _ = self.lookup(ctx, key(src, syntax, style, size_px, color), false, false);
     }
 
     /// The cached result for `key`, asking the pool for it if needed; `None` while pending
@@ -220,6 +240,7 @@ impl MathCache {
             Formula {
                 texture: ctx.load_texture(name, image, egui::TextureOptions::LINEAR),
                 size_px: egui::vec2(r.width as f32, r.height as f32),
+                baseline_px: r.baseline as f32,
                 em_px: f32::from_bits(key.size_bits),
             }
         });
@@ -242,7 +263,12 @@ impl MathCache {
         color: egui::Color32,
     ) -> MathView {
         let wait = self.wait;
-        match self.lookup(ctx, key(src, syntax, size_px, color), true, wait) {
+        match self.lookup(
+            ctx,
+            key(src, syntax, MathStyle::Display, size_px, color),
+            true,
+            wait,
+        ) {
             Some(Ok(f)) => {
                 self.last_good.insert(slot.to_owned(), f.clone());
                 MathView {
@@ -273,10 +299,11 @@ pub fn never_wait(ctx: &egui::Context) {
     }
 }
 
-fn key(src: &str, syntax: MathSyntax, size_px: f32, color: egui::Color32) -> Key {
+fn key(src: &str, syntax: MathSyntax, style: MathStyle, size_px: f32, color: egui::Color32) -> Key {
     Key {
         src: src.to_owned(),
         syntax,
+        style,
         size_bits: size_px.to_bits(),
         rgba: color.to_srgba_unmultiplied(),
     }

@@ -5,12 +5,13 @@
 use std::path::Path;
 
 use super::pool::pool;
-use super::typeset::{MathError, MathSyntax};
+use super::typeset::{MathError, MathStyle, MathSyntax};
 use super::wire::Request;
+use crate::deck::markup::inline_formulas;
 use crate::deck::{Block, Deck};
 use crate::diag::Diagnostic;
 
-/// One `Math` block of a deck.
+/// One formula of a deck: a `Math` block, or `$…$` inside a `Text` or `Bullets` item.
 #[derive(Debug, Clone, PartialEq)]
 pub struct DeckFormula<'a> {
     pub slide: usize,
@@ -18,12 +19,18 @@ pub struct DeckFormula<'a> {
     pub path: Vec<usize>,
     pub src: &'a str,
     pub syntax: MathSyntax,
+    pub style: MathStyle,
+    /// The string the formula is written in (a Math block's `src`, a paragraph or a bullet),
+    /// its [`crate::ron_tree`] path, and the formula's first character in it (0-based).
+    pub written: &'a str,
+    pub written_at: String,
+    pub start_char: usize,
 }
 
 impl DeckFormula<'_> {
-    /// `slides[3].body[1][0][2].src`: where the formula's source is in the RON tree.
+    /// `slides[3].body[1][0][2].src`: where the string holding the formula is in the RON tree.
     pub fn ron_path(&self) -> String {
-        ron_path(self.slide, &self.path)
+        self.written_at.clone()
     }
 
     /// What to ask the pool for, at `size_px` pixels per em in `rgba`.
@@ -31,24 +38,57 @@ impl DeckFormula<'_> {
         Request {
             src: self.src.to_owned(),
             syntax: self.syntax,
+            style: self.style,
             size_px,
             rgba,
         }
     }
+
+    /// Line and column in the deck `text` of the formula's character `col` (1-based, as
+    /// [`MathError::col`]), or of its first character.
+    pub fn position(&self, text: &str, col: Option<usize>) -> Option<(usize, usize)> {
+        let in_written = self.start_char + col.unwrap_or(1);
+        position(text, &self.written_at, self.written, Some(in_written))
+    }
 }
 
-/// The [`ron_tree`] path of the `src` of the Math block at `path` on slide `slide`.
-pub fn ron_path(slide: usize, path: &[usize]) -> String {
+/// The [`ron_tree`] path of the block at `path` on slide `slide`.
+fn block_path(slide: usize, path: &[usize]) -> String {
     let mut p = format!("slides[{slide}].body");
     for i in path {
         p.push_str(&format!("[{i}]"));
     }
-    p.push_str(".src");
     p
 }
 
-/// Every formula of `slides` (all of them when `None`), in reading order.
+/// The [`ron_tree`] path of the `src` of the Math block at `path` on slide `slide`.
+pub fn ron_path(slide: usize, path: &[usize]) -> String {
+    block_path(slide, path) + ".src"
+}
+
+/// Every formula of `slides` (all of them when `None`), in reading order. Inline ones
+/// (`$…$`) are Typst: a paragraph has no `latex` switch.
 pub fn formulas(deck: &Deck, slides: Option<std::ops::Range<usize>>) -> Vec<DeckFormula<'_>> {
+    fn inline<'a>(
+        slide: usize,
+        path: &[usize],
+        written: &'a str,
+        written_at: String,
+        out: &mut Vec<DeckFormula<'a>>,
+    ) {
+        for (src, start_char) in inline_formulas(written) {
+            out.push(DeckFormula {
+                slide,
+                path: path.to_vec(),
+                src,
+                syntax: MathSyntax::Typst,
+                style: MathStyle::Inline,
+                written,
+                written_at: written_at.clone(),
+                start_char,
+            });
+        }
+    }
     fn walk<'a>(
         slide: usize,
         blocks: &'a [Block],
@@ -67,7 +107,19 @@ pub fn formulas(deck: &Deck, slides: Option<std::ops::Range<usize>>) -> Vec<Deck
                     } else {
                         MathSyntax::Typst
                     },
+                    style: MathStyle::Display,
+                    written: src,
+                    written_at: ron_path(slide, path),
+                    start_char: 0,
                 }),
+                // `.0`: the string inside `Text(..)`
+                Block::Text(t) => inline(slide, path, t, block_path(slide, path) + ".0", out),
+                Block::Bullets(items) => {
+                    for (k, t) in items.iter().enumerate() {
+                        let at = format!("{}[{k}]", block_path(slide, path));
+                        inline(slide, path, t, at, out);
+                    }
+                }
                 Block::Columns(cols) => {
                     for (c, col) in cols.iter().enumerate() {
                         path.push(c);
@@ -119,7 +171,7 @@ pub fn diagnostic(file: &Path, text: &str, f: &DeckFormula, err: &MathError) -> 
         MathSyntax::Latex => None,
     };
     let message = message(err);
-    match position(text, &f.ron_path(), f.src, col) {
+    match f.position(text, col) {
         Some((line, col)) => Diagnostic::new(file, line, col, message),
         None => Diagnostic::whole_file(file, format!("slide {}, {message}", f.slide + 1)),
     }
@@ -195,5 +247,42 @@ mod tests {
         let line_text = DECK.lines().nth(d.line - 1).unwrap();
         assert!(line_text[d.col - 1..].starts_with("undefinedthing"), "{d}");
         assert!(d.message.contains("unknown"), "{d}");
+    }
+
+    #[test]
+    fn check_places_an_inline_typst_error_at_its_character() {
+        let deck_text = r##"(
+    title: "t",
+    slides: [
+        (title: "a", body: [
+            Text("where $h$ is the step"),
+            Columns([[Bullets(["plain", "ω and $x + undefinedthing(2)$, \\$5"])]]),
+        ]),
+    ],
+)"##;
+        let deck = parse_deck(deck_text, Path::new("d.ron")).unwrap();
+        let fs = formulas(&deck, None);
+        let found: Vec<_> = fs
+            .iter()
+            .map(|f| (f.src, f.style, f.path.clone()))
+            .collect();
+        assert_eq!(
+            found,
+            vec![
+                ("h", MathStyle::Inline, vec![0]),
+                ("x + undefinedthing(2)", MathStyle::Inline, vec![1, 0, 0]),
+            ]
+        );
+        let (line, col) = fs[0].position(deck_text, None).unwrap();
+        assert!(deck_text.lines().nth(line - 1).unwrap()[col - 1..].starts_with("h$ is"));
+        let ds = check_formulas(Path::new("d.ron"), deck_text, &deck);
+        assert_eq!(ds.len(), 1, "{ds:?}");
+        let line_text = deck_text.lines().nth(ds[0].line - 1).unwrap();
+        let from_col: String = line_text.chars().skip(ds[0].col - 1).collect();
+        assert!(
+            from_col.starts_with("undefinedthing"),
+            "{}: {line_text}",
+            ds[0]
+        );
     }
 }

@@ -19,5 +19,8 @@ pub mod worker;
 pub use cache::{Formula, MathCache, MathView, math_ui, never_wait};
 pub use fonts::{add_fallback_fonts, install_egui_fallback_fonts};
 pub use pool::{pool, set_worker_program, worker_program};
-pub use typeset::{MathError, MathSyntax, RenderedFormula, latex_to_typst, render_formula};
+pub use typeset::{
+    INLINE_MARGIN_Y_EM, MathError, MathStyle, MathSyntax, RenderedFormula, latex_to_typst,
+    render_formula, render_math,
+};
 pub use worker::Bounds;

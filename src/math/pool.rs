@@ -18,7 +18,7 @@ use std::sync::mpsc::{RecvTimeoutError, channel};
 use std::sync::{Arc, Condvar, Mutex, OnceLock};
 use std::time::{Duration, Instant};
 
-use super::typeset::{MathError, RenderedFormula, render_formula};
+use super::typeset::{MathError, RenderedFormula};
 use super::wire::Request;
 use super::worker::{Bounds, Failure, TYPESET_STACK_BYTES, WorkerProcess};
 
@@ -334,9 +334,7 @@ fn in_process(req: &Request, bounds: &Bounds) -> Result<RenderedFormula, MathErr
         .name("typeset-inline".into())
         .stack_size(TYPESET_STACK_BYTES)
         .spawn(move || {
-            let r = std::panic::catch_unwind(|| {
-                render_formula(&req.src, req.syntax, req.size_px, req.rgba)
-            });
+            let r = std::panic::catch_unwind(|| req.render());
             // the waiter may have given up on us: nobody to tell
             let _ = tx.send(r);
         });
@@ -420,6 +418,7 @@ mod tests {
         Request {
             src: src.into(),
             syntax: MathSyntax::Typst,
+            style: Default::default(),
             size_px: 30.0,
             rgba: [0, 0, 0, 255],
         }

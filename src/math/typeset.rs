@@ -23,11 +23,22 @@ pub enum MathSyntax {
     Latex,
 }
 
-/// A rendered formula: premultiplied RGBA, row-major, `width × height` pixels.
+/// How a formula sits: on its own line (a `Math` block) or inside a line of text (`$…$` in a
+/// paragraph), where it must stand on the text's baseline.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum MathStyle {
+    #[default]
+    Display,
+    Inline,
+}
+
+/// A rendered formula: premultiplied RGBA, row-major, `width × height` pixels, with its
+/// baseline `baseline` pixels below the top edge (where a line of text must sit).
 #[derive(Debug, Clone, PartialEq)]
 pub struct RenderedFormula {
     pub width: u32,
     pub height: u32,
+    pub baseline: u32,
     pub rgba_premultiplied: Vec<u8>,
 }
 
@@ -148,6 +159,28 @@ pub fn render_formula(
     size_px: f32,
     rgba: [u8; 4],
 ) -> Result<RenderedFormula, MathError> {
+    render_math(src, syntax, MathStyle::Display, size_px, rgba)
+}
+
+/// The space around an inline formula's ink, above and below (so antialiased edges are not
+/// cut), in ems: a line of text lays the formula out without it (see `app::inline_text`).
+pub const INLINE_MARGIN_Y_EM: f32 = 0.15;
+const INLINE_MARGIN: &str = "(x: 0.04em, y: 0.15em)";
+
+/// A zero-width box holding an invisible letter, typeset just before the formula: its text
+/// item sits on the line's baseline, which is how [`baseline_pt`] finds it (Typst folds line
+/// frames into the page, so their baselines are not kept).
+const BASELINE_MARK: &str = "#box(width: 0pt, text(fill: rgb(0, 0, 0, 0))[x])";
+
+/// [`render_formula`] for either style: `Inline` typesets `src` as inline maths (`$x$` in
+/// Typst: smaller limits and fractions, as in running text) with a thinner side margin.
+pub fn render_math(
+    src: &str,
+    syntax: MathSyntax,
+    style: MathStyle,
+    size_px: f32,
+    rgba: [u8; 4],
+) -> Result<RenderedFormula, MathError> {
     if !(size_px.is_finite() && (1.0..=1000.0).contains(&size_px)) {
         return Err(MathError {
             message: format!("formula size {size_px} px is outside 1..=1000"),
@@ -165,17 +198,37 @@ pub fn render_formula(
         MathSyntax::Latex => (latex_to_typst(src)?, LATEX_PRELUDE),
     };
     let [r, g, b, a] = rgba;
+    // Inline maths is `$x$` with no space inside (Typst's rule), so the source is trimmed;
+    // columns still count from the source's first character.
+    // (a display formula is its own paragraph: a mark before it would be a line of its own)
+    let (margin, open, close, body, skipped) = match style {
+        MathStyle::Display => ("0.15em", "$ ".to_owned(), " $", body.as_str(), 0),
+        MathStyle::Inline => {
+            let trimmed = body.trim_start();
+            let skipped = body.len() - trimmed.len();
+            // Typst trims an inline formula's height by 0.7 × the paragraph's leading, so tall
+            // maths does not push lines apart; here that would clip `x_0` and `T/h`: no leading
+            let open = format!("#set par(leading: 0em)\n{BASELINE_MARK}$");
+            (INLINE_MARGIN, open, "$", trimmed.trim_end(), skipped)
+        }
+    };
     let header = format!(
-        "{prelude}#set page(width: auto, height: auto, margin: 0.15em, fill: none)\n\
-         #set text(size: {LAYOUT_PT}pt, fill: rgb({r}, {g}, {b}, {a}))\n$ "
+        "{prelude}#set page(width: auto, height: auto, margin: {margin}, fill: none)\n\
+         #set text(size: {LAYOUT_PT}pt, fill: rgb({r}, {g}, {b}, {a}))\n{open}"
     );
-    let text = format!("{header}{body} $\n");
+    let text = format!("{header}{body}{close}\n");
     let world = FormulaWorld {
         source: Source::detached(text),
     };
     let doc = typst::compile::<PagedDocument>(&world)
         .output
-        .map_err(|errs| first_error(&world, &errs, header.len(), &body, syntax))?;
+        .map_err(|errs| {
+            let mut e = first_error(&world, &errs, header.len(), body, syntax);
+            if let Some(c) = e.col.as_mut() {
+                *c += src.get(..skipped).map_or(0, |s| s.chars().count());
+            }
+            e
+        })?;
     let page = doc.pages().first().ok_or_else(|| MathError {
         message: "formula produced no output".into(),
         col: None,
@@ -185,11 +238,43 @@ pub fn render_formula(
         render_bleed: false,
     };
     let pixmap = typst_render::render(page, &opts);
+    let baseline_pt = match style {
+        MathStyle::Inline => baseline_pt(&page.frame, typst::layout::Transform::identity()),
+        MathStyle::Display => None,
+    }
+    .unwrap_or(page.frame.height().to_pt());
+    let baseline = (baseline_pt * size_px as f64 / LAYOUT_PT).round() as u32;
     Ok(RenderedFormula {
         width: pixmap.width(),
         height: pixmap.height(),
+        baseline: baseline.min(pixmap.height()),
         rgba_premultiplied: pixmap.data().to_vec(),
     })
+}
+
+/// The y (in pt, from the page's top) of [`BASELINE_MARK`]'s invisible letter: the baseline
+/// of the formula's line. `page_from_frame` places `frame` on the page.
+fn baseline_pt(
+    frame: &typst::layout::Frame,
+    page_from_frame: typst::layout::Transform,
+) -> Option<f64> {
+    use typst::layout::{FrameItem, Transform};
+    use typst::visualize::Paint;
+    for (pos, item) in frame.items() {
+        match item {
+            FrameItem::Text(t) if matches!(&t.fill, Paint::Solid(c) if c.alpha() == Some(0.0)) => {
+                return Some(pos.transform(page_from_frame).y.to_pt());
+            }
+            FrameItem::Group(g) => {
+                let at = Transform::translate(pos.x, pos.y).pre_concat(g.transform);
+                if let Some(y) = baseline_pt(&g.frame, page_from_frame.pre_concat(at)) {
+                    return Some(y);
+                }
+            }
+            _ => {}
+        }
+    }
+    None
 }
 
 /// About how tall `src` will be once typeset, in ems, without typesetting it: for the

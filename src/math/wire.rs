@@ -2,19 +2,19 @@
 //! in and one answer out at a time. Small and hand-written so the child needs nothing but std.
 //!
 //! ```text
-//! request:  u32 len | u8 syntax | f32 size_px | [u8; 4] rgba | utf-8 source (rest)
+//! request:  u32 len | u8 syntax | u8 style | f32 size_px | [u8; 4] rgba | utf-8 source (rest)
 //! answer:   u32 len | u8 tag (0 formula, 1 error, 2 ready) | body
-//!   formula: u32 width | u32 height | rgba bytes (rest)
+//!   formula: u32 width | u32 height | u32 baseline | rgba bytes (rest)
 //!   error:   u32 column + 1 (0: none) | utf-8 message (rest)
 //!   ready:   utf-8 protocol version (rest)
 //! ```
 
 use std::io::{self, Read, Write};
 
-use super::typeset::{MathError, MathSyntax, RenderedFormula};
+use super::typeset::{MathError, MathStyle, MathSyntax, RenderedFormula, render_math};
 
 /// Bumped when a frame's layout changes: a stale worker binary is then refused at start.
-pub const VERSION: &str = "lectern-typeset-1";
+pub const VERSION: &str = "lectern-typeset-2";
 
 /// Largest frame accepted, either way: a 64 MB formula source or picture is not a formula.
 const MAX_FRAME: usize = 64 << 20;
@@ -24,8 +24,16 @@ const MAX_FRAME: usize = 64 << 20;
 pub struct Request {
     pub src: String,
     pub syntax: MathSyntax,
+    pub style: MathStyle,
     pub size_px: f32,
     pub rgba: [u8; 4],
+}
+
+impl Request {
+    /// Typesets it here, in this process (the worker's job, or the pool's in-process fallback).
+    pub fn render(&self) -> Result<RenderedFormula, MathError> {
+        render_math(&self.src, self.syntax, self.style, self.size_px, self.rgba)
+    }
 }
 
 /// What comes back from a worker.
@@ -86,10 +94,14 @@ fn text(b: &[u8]) -> io::Result<String> {
 }
 
 pub fn write_request(w: &mut impl Write, req: &Request) -> io::Result<()> {
-    let mut body = Vec::with_capacity(9 + req.src.len());
+    let mut body = Vec::with_capacity(10 + req.src.len());
     body.push(match req.syntax {
         MathSyntax::Typst => 0,
         MathSyntax::Latex => 1,
+    });
+    body.push(match req.style {
+        MathStyle::Display => 0,
+        MathStyle::Inline => 1,
     });
     body.extend(req.size_px.to_le_bytes());
     body.extend(req.rgba);
@@ -101,7 +113,7 @@ pub fn read_request(r: &mut impl Read) -> io::Result<Option<Request>> {
     let Some(b) = read_frame(r)? else {
         return Ok(None);
     };
-    if b.len() < 9 {
+    if b.len() < 10 {
         return Err(bad("short request"));
     }
     let syntax = match b[0] {
@@ -109,11 +121,17 @@ pub fn read_request(r: &mut impl Read) -> io::Result<Option<Request>> {
         1 => MathSyntax::Latex,
         _ => return Err(bad("unknown syntax")),
     };
+    let style = match b[1] {
+        0 => MathStyle::Display,
+        1 => MathStyle::Inline,
+        _ => return Err(bad("unknown style")),
+    };
     Ok(Some(Request {
         syntax,
-        size_px: f32::from_bits(u32_at(&b, 1)?),
-        rgba: [b[5], b[6], b[7], b[8]],
-        src: text(&b[9..])?,
+        style,
+        size_px: f32::from_bits(u32_at(&b, 2)?),
+        rgba: [b[6], b[7], b[8], b[9]],
+        src: text(&b[10..])?,
     }))
 }
 
@@ -121,10 +139,11 @@ pub fn write_answer(w: &mut impl Write, answer: &Answer) -> io::Result<()> {
     let mut body = Vec::new();
     match answer {
         Answer::Done(Ok(f)) => {
-            body.reserve(9 + f.rgba_premultiplied.len());
+            body.reserve(13 + f.rgba_premultiplied.len());
             body.push(0);
             put_u32(&mut body, f.width);
             put_u32(&mut body, f.height);
+            put_u32(&mut body, f.baseline);
             body.extend(&f.rgba_premultiplied);
         }
         Answer::Done(Err(e)) => {
@@ -147,13 +166,15 @@ pub fn read_answer(r: &mut impl Read) -> io::Result<Option<Answer>> {
     let answer = match b.first() {
         Some(0) => {
             let (width, height) = (u32_at(&b, 1)?, u32_at(&b, 5)?);
-            let rgba = b[9..].to_vec();
+            let baseline = u32_at(&b, 9)?;
+            let rgba = b[13..].to_vec();
             if rgba.len() as u64 != width as u64 * height as u64 * 4 {
                 return Err(bad("picture size does not match its bytes"));
             }
             Answer::Done(Ok(RenderedFormula {
                 width,
                 height,
+                baseline,
                 rgba_premultiplied: rgba,
             }))
         }
@@ -179,6 +200,7 @@ mod tests {
         let req = Request {
             src: "x^2 + ω".into(),
             syntax: MathSyntax::Latex,
+            style: MathStyle::Inline,
             size_px: 41.5,
             rgba: [1, 2, 3, 4],
         };
@@ -195,6 +217,7 @@ mod tests {
             Answer::Done(Ok(RenderedFormula {
                 width: 2,
                 height: 1,
+                baseline: 1,
                 rgba_premultiplied: vec![9; 8],
             })),
             Answer::Done(Err(MathError {
@@ -220,6 +243,7 @@ mod tests {
             &Answer::Done(Ok(RenderedFormula {
                 width: 3,
                 height: 3,
+                baseline: 2,
                 rgba_premultiplied: vec![0; 36],
             })),
         )
@@ -229,6 +253,7 @@ mod tests {
         let mut body = vec![0u8];
         body.extend(100u32.to_le_bytes());
         body.extend(100u32.to_le_bytes());
+        body.extend(50u32.to_le_bytes());
         let mut lying = Vec::new();
         frame(&mut lying, &body).unwrap();
         assert!(read_answer(&mut lying.as_slice()).is_err());

@@ -116,10 +116,7 @@ fn serve_on_this_thread(memory_mb: u64) -> std::io::Result<()> {
     let mut output = BufWriter::new(std::io::stdout().lock());
     wire::write_answer(&mut output, &Answer::Ready(wire::VERSION.into()))?;
     while let Some(req) = wire::read_request(&mut input)? {
-        let result = std::panic::catch_unwind(|| {
-            render_formula(&req.src, req.syntax, req.size_px, req.rgba)
-        })
-        .unwrap_or_else(|_| {
+        let result = std::panic::catch_unwind(|| req.render()).unwrap_or_else(|_| {
             Err(MathError {
                 message: "the typesetter failed on this formula (internal error)".into(),
                 col: None,

@@ -170,7 +170,8 @@ impl LiveOde {
 
     /// Typing: `text` becomes the expression in `slot` if the whole equation then compiles;
     /// otherwise the last good equation stays and the field keeps the error and its column.
-    /// Returns whether the equation changed.
+    /// A changed right-hand side drops the file's exact solution, as [`LiveOde::commit`]
+    /// does. Returns whether the equation changed.
     pub fn set_expr(&mut self, slot: ExprSlot, text: &str) -> bool {
         self.sync_params();
         let Some(def) = &self.def else { return false };
@@ -192,12 +193,11 @@ impl LiveOde {
             return false;
         }
         *target = text.to_owned();
+        fit_exact(self.file_def.as_ref(), &mut candidate);
         match candidate.compile(named) {
             Ok(p) => {
                 field.error = None;
-                self.def = Some(candidate);
-                self.problem = Some(p);
-                self.revision += 1;
+                self.use_committed(candidate, p);
                 true
             }
             Err(e) => {
@@ -209,6 +209,27 @@ impl LiveOde {
                 false
             }
         }
+    }
+
+    /// `def` (compiled to `problem`) becomes the equation everyone sees; the readouts say so
+    /// when it left the file's exact solution behind.
+    fn use_committed(&mut self, def: ProblemDef, problem: Problem) {
+        let file_has_exact = self.file_def.as_ref().is_some_and(|f| f.exact.is_some());
+        self.dropped_exact = (file_has_exact && def.exact.is_none()).then(|| {
+            "the exact solution was dropped: it solved the file's equation, not the typed one"
+                .to_owned()
+        });
+        self.def = Some(def);
+        self.problem = Some(problem);
+        self.revision += 1;
+        self.refill_fields();
+    }
+
+    /// Whether the equation shown has no exact solution although its file gives one (the
+    /// write-back then removes it from the file: it solved the file's old equation).
+    pub fn drops_files_exact(&self) -> bool {
+        let file_has_exact = self.file_def.as_ref().is_some_and(|f| f.exact.is_some());
+        file_has_exact && self.def.as_ref().is_some_and(|d| d.exact.is_none())
     }
 
     /// Typing, as the presenter does: `text` becomes the draft of `slot`. Nothing the
@@ -265,17 +286,7 @@ impl LiveOde {
         if candidate.exact.is_some() {
             candidate.exact = Some(self.exact.iter().map(|f| f.text.clone()).collect());
         }
-        let file = self.file_def.as_ref();
-        let rhs_is_the_files = file.is_some_and(|f| f.rhs == candidate.rhs);
-        let exact_is_the_files = file.is_some_and(|f| f.exact == candidate.exact);
-        let mut dropped = false;
-        if !rhs_is_the_files && exact_is_the_files && candidate.exact.is_some() {
-            candidate.exact = None;
-            dropped = true;
-        } else if rhs_is_the_files && candidate.exact.is_none() {
-            // back to the file's equation: its exact solution belongs again
-            candidate.exact = file.and_then(|f| f.exact.clone());
-        }
+        let dropped = fit_exact(self.file_def.as_ref(), &mut candidate);
         Some(match candidate.compile(self.named()) {
             Ok(p) => Ok((candidate, p, dropped)),
             Err(e) => {
@@ -307,15 +318,7 @@ impl LiveOde {
         let Some(Ok((def, problem, _))) = self.draft() else {
             return false;
         };
-        let file_has_exact = self.file_def.as_ref().is_some_and(|f| f.exact.is_some());
-        self.dropped_exact = (file_has_exact && def.exact.is_none()).then(|| {
-            "the exact solution was dropped: it solved the file's equation, not the typed one"
-                .to_owned()
-        });
-        self.def = Some(def);
-        self.problem = Some(problem);
-        self.revision += 1;
-        self.refill_fields();
+        self.use_committed(def, problem);
         true
     }
 
@@ -406,7 +409,10 @@ impl LiveOde {
         let (Some(old_file), Some(new_file)) = (&old.file_def, self.file_def.clone()) else {
             return;
         };
-        for (slot, text) in old.typed() {
+        // exact solutions first: a typed one then goes with its typed right-hand side
+        let mut typed = old.typed();
+        typed.sort_by_key(|(slot, _)| matches!(slot, ExprSlot::Rhs(_)));
+        for (slot, text) in typed {
             let (was, now) = match slot {
                 ExprSlot::Rhs(k) => (old_file.rhs.get(k), new_file.rhs.get(k)),
                 ExprSlot::Exact(k) => (
@@ -423,6 +429,24 @@ impl LiveOde {
     /// The equation as the audience reads it: `ẋ = cos(t) − x`, `(ẋ, ẏ) = (−y, x)`.
     pub fn label(&self) -> String {
         self.def.as_ref().map(equation_label).unwrap_or_default()
+    }
+}
+
+/// The one rule for an exact solution while typing: a right-hand side changed from the
+/// file's drops the file's exact solution (it solved the old equation) unless an exact one was
+/// typed along with it; back to the file's right-hand side, the file's exact solution belongs
+/// again. Returns whether it dropped one.
+fn fit_exact(file: Option<&ProblemDef>, candidate: &mut ProblemDef) -> bool {
+    let rhs_is_the_files = file.is_some_and(|f| f.rhs == candidate.rhs);
+    let exact_is_the_files = file.is_some_and(|f| f.exact == candidate.exact);
+    if !rhs_is_the_files && exact_is_the_files && candidate.exact.is_some() {
+        candidate.exact = None;
+        true
+    } else {
+        if rhs_is_the_files && candidate.exact.is_none() {
+            candidate.exact = file.and_then(|f| f.exact.clone());
+        }
+        false
     }
 }
 
@@ -572,6 +596,38 @@ mod tests {
         assert_eq!(pretty_expr("exp(-k*t) + sin(w*t)"), "exp(−k·t) + sin(w·t)");
         assert_eq!(pretty_expr("2*pi*x^2.5"), "2·π·x^2.5");
         assert_eq!(live.label(), "ẏ = lambda·y");
+    }
+
+    /// The reload path (`carry_from` re-typing with `set_expr`) follows Enter's rule: a typed
+    /// right-hand side drops the file's exact solution, which solved the old equation.
+    #[test]
+    fn a_reload_carrying_a_typed_rhs_drops_the_stale_exact_solution() {
+        let with_exact: OdeSource = ron::from_str(
+            r#"Inline((vars: ["x"], rhs: ["-x"], initial: [1.0], exact: Some(["exp(-(t - t0))*x"])))"#,
+        )
+        .unwrap();
+        let mut old = LiveOde::new(&with_exact, None);
+        assert!(old.set_draft(ExprSlot::Rhs(0), "-2*x"));
+        assert!(old.commit());
+        assert!(old.drops_files_exact() && old.dropped_exact().is_some());
+        // the file reloads (unchanged here): the typed equation is carried, without the exact
+        let mut next = LiveOde::new(&with_exact, None);
+        next.carry_from(&old);
+        assert_eq!(next.def().unwrap().rhs, vec!["-2*x".to_string()]);
+        assert_eq!(
+            next.def().unwrap().exact,
+            None,
+            "a stale exact would be kept"
+        );
+        assert!(next.dropped_exact().is_some() && next.drops_files_exact());
+        assert!(
+            next.fields().1.is_empty(),
+            "no exact field for the typed equation"
+        );
+        // typing the file's right-hand side back brings its exact solution back
+        assert!(next.set_expr(ExprSlot::Rhs(0), "-x"));
+        assert!(next.def().unwrap().exact.is_some() && !next.drops_files_exact());
+        assert!(next.dropped_exact().is_none());
     }
 
     #[test]

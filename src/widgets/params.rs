@@ -41,6 +41,22 @@ pub enum WriteTo {
     Nowhere,
 }
 
+/// The parameter `id` names among `params`: written as is, else in its other Greek spelling
+/// (a bookmark's or a tweak file's `zeta` finds the parameter `ζ`, and `ω` finds `omega`).
+pub fn find_param<'a>(params: Vec<Param<'a>>, id: &str) -> Option<Param<'a>> {
+    let alias = crate::ode::expr::greek::alias(id);
+    let mut by_alias = None;
+    for p in params {
+        if p.id == id {
+            return Some(p);
+        }
+        if by_alias.is_none() && alias.as_deref() == Some(p.id.as_str()) {
+            by_alias = Some(p);
+        }
+    }
+    by_alias
+}
+
 /// A parameter's value detached from the widget, for keeping across reloads.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub enum ParamSnapshot {

@@ -28,10 +28,11 @@ struct World {
 }
 
 fn load_world(base_dir: Option<&Path>, spec: &SimulationLoopSpec) -> Result<World, String> {
-    let path = match base_dir {
-        Some(dir) => crate::paths::resolve_in(dir, &spec.scene).map_err(|e| e.to_string())?,
-        None => PathBuf::from(&spec.scene),
+    let resolved = match base_dir {
+        Some(dir) => crate::paths::resolve_in(dir, &spec.scene),
+        None => Ok(PathBuf::from(&spec.scene)),
     };
+    let path = crate::bundled::scene_file(resolved, &spec.scene)?.path;
     let scene: Scene = crate::scene::load_scene(&path).map_err(|d| d.to_string())?;
     let level = scene.water.level;
     let body = scene

@@ -115,10 +115,11 @@ impl SceneWidget {
     /// The widget; `base_dir` is the deck's folder (the scene file is resolved against it,
     /// inside the project only).
     pub fn new_in(spec: SceneSpec, base_dir: Option<&Path>) -> Self {
-        let scene_path = match base_dir {
-            Some(dir) => crate::paths::resolve_in(dir, &spec.scene).map_err(|e| e.to_string()),
+        let resolved = match base_dir {
+            Some(dir) => crate::paths::resolve_in(dir, &spec.scene),
             None => Ok(PathBuf::from(&spec.scene)),
         };
+        let scene_path = crate::bundled::scene_file(resolved, &spec.scene).map(|f| f.path);
         let started = std::time::Instant::now();
         let sim = scene_path.clone().and_then(|p| {
             crate::scene::load_scene(&p)
