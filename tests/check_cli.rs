@@ -126,3 +126,20 @@ fn the_bundled_project_is_all_good() {
     assert!(ok, "{out}");
     assert!(out.lines().last().unwrap().ends_with("all good"), "{out}");
 }
+
+#[test]
+fn an_energy_that_does_not_compile_at_its_value() {
+    let p = project();
+    write(
+        &p.path().join("slides/problems"),
+        "osc.ron",
+        "(\n    name: \"osc\",\n    vars: [\"x\", \"v\"],\n    rhs: [\"v\", \"-x\"],\n    initial: [1.0, 0.0],\n)\n",
+    );
+    let f = write(
+        &p.path().join("slides"),
+        "energy.ron",
+        &deck(r#"      Widget(Energy((ode: File("problems/osc.ron"), energy: "0.5*v*v + q"))),"#),
+    );
+    // at the value; the message gives the column inside the expression
+    assert_one_problem(&f, 5, 61, "energy: unknown name `q`");
+}

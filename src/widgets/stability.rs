@@ -528,6 +528,8 @@ impl SlideWidget for Stability {
         let shown = ui.horizontal(|ui| {
             ui.add_space(((avail.x - w) / 2.0).max(0.0));
             let plot = style::plot(ui, "stability", "Re z")
+                // a unit's ticks on a narrow equal-aspect plane, as on the Im axis
+                .custom_x_axes(vec![style::x_axis(ui, "Re z", 40.0)])
                 .width(w)
                 .height(h)
                 .default_x_bounds(x0, x1)

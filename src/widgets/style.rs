@@ -87,13 +87,7 @@ pub fn plot<'a>(ui: &egui::Ui, id: impl egui::AsIdSalt, x_name: &str) -> egui_pl
     use egui_plot::AxisHints;
     let u = unit(ui);
     let ticks = ui.visuals().text_color();
-    let mut x_axis = AxisHints::new_x()
-        .tick_label_color(ticks)
-        .label_spacing(egui::Rangef::new(80.0 * u, 81.0 * u))
-        .min_thickness(14.0 * u);
-    if !x_name.is_empty() {
-        x_axis = x_axis.label(x_name.to_owned());
-    }
+    let x_axis = x_axis(ui, x_name, 80.0);
     let y_axis = AxisHints::new_y()
         .tick_label_color(ticks)
         .label_spacing(egui::Rangef::new(40.0 * u, 41.0 * u))
@@ -113,6 +107,21 @@ pub fn plot<'a>(ui: &egui::Ui, id: impl egui::AsIdSalt, x_name: &str) -> egui_pl
         .grid_color(thin(ui.visuals().text_color(), u))
         .custom_x_axes(vec![x_axis])
         .custom_y_axes(vec![y_axis])
+}
+
+/// The x axis [`plot`] draws, named `x_name`, its tick labels at least `spacing` slide units
+/// apart (80 by default; a narrow plot, such as an equal-aspect complex plane, takes 40).
+pub fn x_axis(ui: &egui::Ui, x_name: &str, spacing: f32) -> egui_plot::AxisHints<'static> {
+    let u = unit(ui);
+    let x_axis = egui_plot::AxisHints::new_x()
+        .tick_label_color(ui.visuals().text_color())
+        .label_spacing(egui::Rangef::new(spacing * u, (spacing + 1.0) * u))
+        .min_thickness(14.0 * u);
+    if x_name.is_empty() {
+        x_axis
+    } else {
+        x_axis.label(x_name.to_owned())
+    }
 }
 
 /// `color` for a line egui_plot draws one point wide whatever we ask (grid lines, slope
