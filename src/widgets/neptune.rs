@@ -212,6 +212,8 @@ impl SlideWidget for Neptune {
         style::y_name_ui(ui, &y_name);
         let mut labels = Vec::new();
         let mut obstacles_at = Vec::new();
+        let mut lines = vec![exact.clone()];
+        lines.extend(paths.iter().map(|(_, _, (pts, _))| pts.clone()));
         let shown = style::plot(ui, "neptune", "t")
             .default_x_bounds(t0, t_end)
             .default_y_bounds(-clamp * 1.1, clamp * 1.1)
@@ -270,7 +272,7 @@ impl SlideWidget for Neptune {
             .iter()
             .map(|&e| labels::marker_rect(t, e, 2.0 * style::KEY_MARKER_RADIUS * u))
             .collect();
-        labels::draw(ui, t, &labels, &obstacles);
+        labels::draw(ui, t, &labels, &obstacles, &lines);
     }
 
     fn params(&mut self) -> Vec<Param<'_>> {
