@@ -109,3 +109,15 @@ if __name__=='__main__':
         if cur>best[0]: best=(cur,dict(m))
     print('least normal-vision difference on a slide: %.1f'%best[0])
     for r in FREE: print(r, best[1][r], cand[best[1][r]])
+    # Second stage, after radau5 took a cyan 3.4 from the sea blue above: Tsit5 alone on a
+    # 16-level sRGB grid, ≥ 15 (normal) and ≥ 7.5 (dichromats) from slide 14's other lines and
+    # ≥ 4 from every role of the map, best smallest difference (dichromats' counted twice).
+    slide14=['#D55E00','#0072B2','#009C72','#707070','#857A47','#BB5C92']
+    roles=slide14+['#A25179','#BE719C','#968951','#228833','#CC3311','#197C3A','#EE1199','#337777','#9C6B30','#1C8FB0','#B04381','#938C29','#6E62AA','#B87E00','#AA4499']
+    grid=[]
+    for h in ('#%02X%02X%02X'%(r*17,g*17,b*17) for r in range(16) for g in range(16) for b in range(16)):
+        if not ok(hexc(h)): continue
+        nm=min(de(h,x,None) for x in slide14)
+        dc=min(min(de(h,x,'P'),de(h,x,'D')) for x in slide14)
+        if nm>=15 and dc>=7.5 and min(de(h,x,None) for x in roles)>=4: grid.append((min(nm,2*dc),h))
+    print('tsit5 (grid)', max(grid)[1])

@@ -58,7 +58,7 @@ struct Globals {
     caustics_half_extent_m: f32, // the caustics map covers |x|, |z| ≤ this
     caustics_depth_m: f32,      // below the water level: the floor the map is focused on
     rad_per_px: f32,            // the angle one pixel of the HDR target subtends, radians
-    _pad: f32,
+    wave_reach_m: f32,          // Σ amplitudes: no crest or trough is farther from the level
     waves: array<Wave, MAX_WAVES>,
 }
 
@@ -89,17 +89,28 @@ fn gerstner(xz: vec2f, t: f32) -> Surface {
 // As `gerstner`, where one pixel covers `footprint_m` metres of water: each wave shorter than
 // six pixels there fades out (gone at two), so the far sea does not alias into noise and
 // sparkle; the waves under the floating bodies (≫ 6 px each) are the CPU twin's, unfaded.
-fn gerstner_faded(xz: vec2f, t: f32, footprint_in_m: f32) -> Surface {
-    var p = vec3f(xz.x, g.water_level_m, xz.y);
-    // tangents ∂P/∂x and ∂P/∂z; the normal is their exact cross product (keeps the cross terms
-    // GPU Gems eq. 12 drops, as src/waves.rs does)
-    var tg = vec3f(1.0, 0.0, 0.0);
-    var bt = vec3f(0.0, 0.0, 1.0);
+fn gerstner_faded(xz: vec2f, t: f32, footprint_m: f32) -> Surface {
+    return surface_of(xz, gerstner_terms(xz, t, footprint_m, 0u, MAX_WAVES));
+}
+
+// What waves `first`..`last` add at rest position `xz`: the displacement, and the terms of
+// the tangents ∂P/∂x and ∂P/∂z. Sums are additive, so the water's vertex shader can sum the
+// long waves once per vertex and its fragment shader the short ones per pixel
+// (`WATER_VERTEX_WAVES`). The slots are filled long to short and end at the last one
+// (`waves_gpu` in src/render/frame.rs); unused leading slots are zero and add nothing.
+struct WaveTerms {
+    offset: vec3f,
+    d_dx: vec3f,
+    d_dz: vec3f,
+}
+
+fn gerstner_terms(xz: vec2f, t: f32, footprint_in_m: f32, first: u32, last: u32) -> WaveTerms {
+    var sum = WaveTerms(vec3f(0.0), vec3f(0.0), vec3f(0.0));
     let footprint_m = max(footprint_in_m, 1e-6);
-    // all MAX_WAVES slots (unused ones are zero and add nothing), not `g.wave_count`: a loop
+    // constant bounds only (`MAX_WAVES` or a pipeline constant), never `g.wave_count`: a loop
     // bound read from a uniform makes lavapipe (Mesa 22.3) compile and keep a new shader variant
     // every frame (+0.25 MB per frame; see pbr.wgsl and docs/benchmarks/scene.md)
-    for (var i = 0u; i < MAX_WAVES; i++) {
+    for (var i = first; i < last; i++) {
         let w = g.waves[i];
         let d = w.direction;
         let k = max(w.wavenumber_per_m, 1e-6); // an unused slot: k = 0
@@ -110,12 +121,26 @@ fn gerstner_faded(xz: vec2f, t: f32, footprint_in_m: f32) -> Surface {
         let s = sin(phase);
         let c = cos(phase);
         // horizontal: Q·A·D·cos, with Q·A = qka / k
-        p += vec3f(d.x * qka / k * c, a * s, d.y * qka / k * c);
-        tg -= vec3f(qka * d.x * d.x * s, -d.x * k * a * c, qka * d.x * d.y * s);
-        bt -= vec3f(qka * d.x * d.y * s, -d.y * k * a * c, qka * d.y * d.y * s);
+        sum.offset += vec3f(d.x * qka / k * c, a * s, d.y * qka / k * c);
+        sum.d_dx -= vec3f(qka * d.x * d.x * s, -d.x * k * a * c, qka * d.x * d.y * s);
+        sum.d_dz -= vec3f(qka * d.x * d.y * s, -d.y * k * a * c, qka * d.y * d.y * s);
     }
+    return sum;
+}
+
+// The surface from the terms of every wave: the normal is the exact cross product of the
+// tangents (keeps the cross terms GPU Gems eq. 12 drops, as src/waves.rs does).
+fn surface_of(xz: vec2f, terms: WaveTerms) -> Surface {
+    let p = vec3f(xz.x, g.water_level_m, xz.y) + terms.offset;
+    let tg = vec3f(1.0, 0.0, 0.0) + terms.d_dx;
+    let bt = vec3f(0.0, 0.0, 1.0) + terms.d_dz;
     return Surface(p, normalize(cross(bt, tg)), normalize(tg));
 }
+
+// How many of the wave slots (the longest, from slot 0) the water sums per vertex only, its
+// fragment shader adding the rest per pixel: 0 at full quality, more on the lower rungs of the
+// automatic quality (`WaterNormals` in src/render/frame.rs), a constant to the shader compiler.
+override WATER_VERTEX_WAVES: u32 = 0u;
 
 // Comparison taps on each side of the centre one in `sun_visibility`: 1 (3×3 PCF) or 0 (one
 // bilinear tap, the lowest quality rungs). Set per pipeline (ShadowFilter in src/render/frame.rs):
@@ -144,10 +169,11 @@ fn sun_visibility(world_pos: vec3f, normal: vec3f) -> f32 {
     return mix(1.0, sum / (taps * taps), f32(g.shadows_on));
 }
 
-// Sunlight reaching a point under water is absorbed along its (unrefracted) path: Beer–Lambert.
+// Sunlight reaching a point under water is absorbed along its path, refracted at the (flat)
+// surface and so steeper than the sun itself: Beer–Lambert.
 fn sun_transmittance(world_pos: vec3f) -> vec3f {
     let depth = max(g.water_level_m - world_pos.y, 0.0);
-    let path = depth / max(g.sun_dir.y, 0.1);
+    let path = depth / max(sun_dir_in_water().y, 0.1);
     return exp(-g.absorption_per_m * path);
 }
 

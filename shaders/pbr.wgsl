@@ -73,8 +73,13 @@ fn fs_main(in: VertexOut) -> @location(0) vec4f {
     let v = normalize(g.eye_m - in.world_pos);
     // the waterline: a wet band just above the surface where the waves splash, darker (water
     // fills the pores, less light scatters back out) and glossier (a film of water)
-    let surface_y = gerstner(in.world_pos.xz, g.time_secs).position.y;
-    let above_m = in.world_pos.y - surface_y;
+    // only within the waves' reach of the mean level (and the band above it): the seabed and
+    // rocks cover most pixels, and the sum costs 32 waves a pixel on a software rasteriser (a
+    // branch on the position, not on a uniform alone: see the vertex shader)
+    var above_m = 1e3;
+    if (abs(in.world_pos.y - g.water_level_m) < g.wave_reach_m + 0.2) {
+        above_m = in.world_pos.y - gerstner(in.world_pos.xz, g.time_secs).position.y;
+    }
     let wet = (1.0 - smoothstep(0.03, 0.18, above_m)) * step(0.0, above_m);
     let base = material.base_color.rgb * mix(1.0, 0.55, wet);
     let roughness = mix(material.roughness, 0.12, wet);

@@ -1,11 +1,14 @@
 // tonemap.wgsl — HDR to display (tone mapping): exposure, then the ACES filmic curve in
 // Narkowicz's fit (Narkowicz 2015, "ACES Filmic Tone Mapping Curve", aces.wgsl); the sRGB
-// encoding is done by a *Srgb target format or by `to_target` (srgb.wgsl). The HDR image may be
-// smaller than the display (dynamic resolution): it is sampled bilinearly, which scales it up.
-// The normals debug view is already display-ready and passes through.
+// encoding is done by a *Srgb target format or by `to_target` (srgb.wgsl). `fs_main` draws the
+// display image at the HDR image's size, anti-aliasing geometric edges with FXAA (Lottes 2011,
+// fxaa.wgsl) where the pipeline has it on; `fs_upscale` then scales it up to the output
+// bilinearly (dynamic resolution draws the scene smaller than the display). The normals debug
+// view is already display-ready and passes through.
 //!include fullscreen.wgsl
 //!include aces.wgsl
 //!include srgb.wgsl
+//!include fxaa.wgsl
 
 // `PostParams` in src/render/tonemap.rs
 struct Post {
@@ -18,15 +21,29 @@ struct Post {
 }
 
 @group(0) @binding(0) var<uniform> post: Post;
+// the HDR image (`fs_main`), or the display image (`fs_upscale`)
 @group(0) @binding(1) var hdr: texture_2d<f32>;
 @group(0) @binding(2) var hdr_sampler: sampler;
 
+// The display colour of the HDR image at `uv` (what fxaa.wgsl blends).
+fn display_at(uv: vec2f) -> vec3f {
+    return aces(textureSampleLevel(hdr, hdr_sampler, uv, 0.0).rgb * post.exposure);
+}
+
 @fragment
 fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
-    let c = textureSampleLevel(hdr, hdr_sampler, in.uv, 0.0).rgb;
     if (post.debug_view == 2u) {
         // normals are encoded 0..1 in sRGB-ish display space; undo the target's encoding
+        let c = textureSampleLevel(hdr, hdr_sampler, in.uv, 0.0).rgb;
         return to_target(pow(c, vec3f(2.2)));
     }
-    return to_target(aces(c * post.exposure));
+    if (FXAA_ON) {
+        return to_target(fxaa(in.uv, 1.0 / vec2f(textureDimensions(hdr))));
+    }
+    return to_target(display_at(in.uv));
+}
+
+@fragment
+fn fs_upscale(in: FullscreenOut) -> @location(0) vec4f {
+    return to_target(textureSampleLevel(hdr, hdr_sampler, in.uv, 0.0).rgb);
 }

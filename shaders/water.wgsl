@@ -19,6 +19,10 @@ struct VertexOut {
     @builtin(position) clip: vec4f,
     @location(0) world_pos: vec3f,
     @location(1) rest_xz: vec2f,
+    // the long waves' tangent terms (`WATER_VERTEX_WAVES`), summed per vertex: smooth over a
+    // grid cell, so interpolating them loses nothing the eye sees
+    @location(2) long_d_dx: vec3f,
+    @location(3) long_d_dz: vec3f,
 }
 
 // Where the view ray through the screen point `ndc` meets the still water plane, as a rest
@@ -50,11 +54,16 @@ fn footprint_m(xz: vec2f) -> f32 {
 @vertex
 fn vs_main(@location(0) grid_ndc: vec2f) -> VertexOut {
     let rest_xz = project_to_water(grid_ndc);
-    let s = gerstner_faded(rest_xz, g.time_secs, footprint_m(rest_xz));
+    let footprint = footprint_m(rest_xz);
+    let long = gerstner_terms(rest_xz, g.time_secs, footprint, 0u, WATER_VERTEX_WAVES);
+    let short = gerstner_terms(rest_xz, g.time_secs, footprint, WATER_VERTEX_WAVES, MAX_WAVES);
+    let p = vec3f(rest_xz.x, g.water_level_m, rest_xz.y) + long.offset + short.offset;
     var out: VertexOut;
-    out.clip = g.clip_from_world * vec4f(s.position, 1.0);
-    out.world_pos = s.position;
+    out.clip = g.clip_from_world * vec4f(p, 1.0);
+    out.world_pos = p;
     out.rest_xz = rest_xz;
+    out.long_d_dx = long.d_dx;
+    out.long_d_dz = long.d_dz;
     return out;
 }
 
@@ -79,11 +88,12 @@ fn sky_along(dir: vec3f) -> vec3f {
 }
 
 // The normals view: a light tint of the water's own normal over the normals of what lies below
-// (the opaque pass wrote them as colours), so it shows the geometry, not a sheet. Mixed in by a
-// factor at the end, like every toggle here: an `if` on the uniforms makes lavapipe (Mesa 22.3)
-// compile and keep a variant of this shader every frame (+1.5 MB a frame; benchmarks/scene.md).
-fn with_normals_view(color: vec3f, n: vec3f, uv: vec2f) -> vec4f {
-    let normals = mix(below_at(uv).rgb, n * 0.5 + 0.5, 0.3);
+// (`below`: the opaque pass wrote them as colours), so it shows the geometry, not a sheet. Mixed
+// in by a factor at the end, like every toggle here: an `if` on the uniforms makes lavapipe
+// (Mesa 22.3) compile and keep a variant of this shader every frame (+1.5 MB a frame;
+// benchmarks/scene.md).
+fn with_normals_view(color: vec3f, n: vec3f, below: vec3f) -> vec4f {
+    let normals = mix(below, n * 0.5 + 0.5, 0.3);
     return vec4f(mix(color, normals, f32(g.debug_view == DEBUG_NORMALS)), 1.0);
 }
 
@@ -107,56 +117,54 @@ fn sun_glint(n: vec3f, v: vec3f, fresnel: f32, variance: f32, world_pos: vec3f) 
 @fragment
 fn fs_main(in: VertexOut) -> @location(0) vec4f {
     let water_dist = distance(g.eye_m, in.world_pos);
-    // per-pixel analytic normal: the sum evaluated again at this fragment's rest position
-    var n = gerstner_faded(in.rest_xz, g.time_secs, footprint_m(in.rest_xz)).normal;
+    // per-pixel analytic normal: the short waves evaluated again at this fragment's rest
+    // position (all of them at full quality), the long ones' terms interpolated
+    var terms = gerstner_terms(in.rest_xz, g.time_secs, footprint_m(in.rest_xz),
+                               WATER_VERTEX_WAVES, MAX_WAVES);
+    terms.d_dx += in.long_d_dx;
+    terms.d_dz += in.long_d_dz;
+    let n_up = surface_of(in.rest_xz, terms).normal;
     let from_below = g.eye_m.y < in.world_pos.y;
-    let dn = fwidth(n);
+    let dn = fwidth(n_up);
     let variance = min(2.0 * dot(dn, dn), 0.18);
     let v = normalize(g.eye_m - in.world_pos);
-    if (from_below) {
-        n = -n;
-    }
+    let n = select(n_up, -n_up, from_below);
     let uv0 = in.clip.xy / g.viewport_size_px;
     let n_dot_v = clamp(dot(n, v), 1e-4, 1.0);
+    let straight = below_at(uv0);
 
-    if (from_below) {
-        // into the air (n_water / n_air); outside Snell's window (48.8° from the normal) the
-        // surface is a mirror of the water below
-        let t = refract(-v, n, 1.0 / ETA_AIR_OVER_WATER);
-        let tir = dot(t, t) < 1e-6;
-        var fresnel = 1.0;
-        if (!tir) {
-            // Schlick with the angle on the thin side of the interface
-            fresnel = 0.02 + 0.98 * pow(1.0 - clamp(dot(t, -n), 0.0, 1.0), 5.0);
-        }
-        let deep = water_path(1e4, g.water_level_m - g.eye_m.y, 0.0).inscatter;
-        var surface = deep * fresnel;
-        if (!tir) {
-            surface += sky_along(t) * (1.0 - fresnel);
-        }
-        let eye_depth = g.water_level_m - g.eye_m.y;
-        let w = water_path(water_dist, eye_depth, -(-v).y);
-        return with_normals_view(surface * w.transmittance + w.inscatter, n, uv0);
-    }
+    // Both sides are computed and one selected (a software rasteriser runs both sides of a
+    // branch anyway), sharing their texture fetches: one sky lookup (reflected from above,
+    // through Snell's window from below) and the straight look at the opaque image.
+    // from below, into the air (n_water / n_air); outside Snell's window (48.8° from the
+    // normal) the surface is a mirror of the water below
+    let t_up = refract(-v, n, 1.0 / ETA_AIR_OVER_WATER);
+    let window = f32(dot(t_up, t_up) > 1e-6);
+    let sky = sky_along(select(reflect(-v, n), t_up, from_below));
 
-    // Fresnel weight between reflection and refraction
+    // ---- from below: Schlick with the angle on the thin side of the interface
+    let fresnel_up = mix(1.0, 0.02 + 0.98 * pow(1.0 - clamp(dot(t_up, -n), 0.0, 1.0), 5.0), window);
+    let eye_depth = g.water_level_m - g.eye_m.y;
+    let deep = water_path(1e4, eye_depth, 0.0).inscatter;
+    let surface = deep * fresnel_up + sky * (1.0 - fresnel_up) * window;
+    let w_up = water_path(water_dist, eye_depth, v.y);
+    let seen_from_below = surface * w_up.transmittance + w_up.inscatter;
+
+    // ---- from above: Fresnel weight between reflection and refraction
     let fresnel = mix(0.25, 0.02 + 0.98 * pow(1.0 - n_dot_v, 5.0), f32(g.fresnel_on));
-    let reflected = sky_along(reflect(-v, n));
-
     // refraction: follow the refracted ray as far as the straight view ray reaches the scene
     // behind, look the scene up there, and fall back to the straight lookup when that picks up
     // something in front of the surface (a floating body)
-    let straight = below_at(uv0);
     let t = refract(-v, n, ETA_AIR_OVER_WATER);
     let guess_m = clamp(straight.a - water_dist, 0.0, 20.0);
     var seen = below_at(uv_of(in.world_pos + t * guess_m));
-    if (seen.a < water_dist) {
-        seen = straight;
-    }
+    seen = select(seen, straight, seen.a < water_dist);
     let path = max(seen.a - water_dist, 0.0);
     let w = water_path(path, 0.0, max(-t.y, 0.0));
     let refracted = seen.rgb * w.transmittance + w.inscatter;
-
     let glint = sun_glint(n, v, fresnel, variance, in.world_pos);
-    return with_normals_view(mix(refracted, reflected, fresnel) + glint, n, uv0);
+    let seen_from_above = mix(refracted, sky, fresnel) + glint;
+
+    let color = select(seen_from_above, seen_from_below, from_below);
+    return with_normals_view(color, n, straight.rgb);
 }

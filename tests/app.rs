@@ -406,3 +406,104 @@ fn slide_keys_work_without_their_release_and_are_not_left_held() {
         assert!(!h.ctx.input(|i| i.key_down(Key::ArrowRight)));
     }
 }
+
+/// Every text the frame painted, rows joined.
+fn painted_text(h: &Harness<'static, LecternApp>) -> String {
+    use egui::epaint::Shape;
+    fn walk(shape: &Shape, out: &mut String) {
+        match shape {
+            Shape::Vec(v) => v.iter().for_each(|s| walk(s, out)),
+            Shape::Text(t) => {
+                out.push_str(t.galley.text());
+                out.push('\n');
+            }
+            _ => {}
+        }
+    }
+    let mut out = String::new();
+    for c in &h.output().shapes {
+        walk(&c.shape, &mut out);
+    }
+    out
+}
+
+/// Live, on the lecture's slope field (slide 4, h = 0.5): `+`/`−` walk round values of h,
+/// never 0.7071, and every path still ends at t_end (the readout's "error at the end"); the
+/// `?` list names the widget keys; hovering the plot draws nothing more than the slide did
+/// (no crosshair's unlabelled grid lines).
+#[test]
+fn widget_keys_walk_round_h_paths_end_at_t_end_help_names_them_no_crosshair() {
+    use lectern::widgets::{ParamSnapshot, params};
+    let (_dir, path) = lecture_copy();
+    let mut h = harness(&path);
+    h.run_steps(2);
+    for _ in 0..3 {
+        press(&mut h, Key::ArrowRight);
+    }
+    assert_eq!(index(&h), 3);
+    let slide = h.state().session().deck().slides[3].clone();
+    let (widget_path, spec) = slide.widgets().into_iter().next().unwrap();
+    assert_eq!(spec.kind(), "slope-field");
+    let state = |h: &mut Harness<'static, LecternApp>| {
+        let w = h
+            .state_mut()
+            .slide_state(3)
+            .unwrap()
+            .widget_at(&widget_path)
+            .unwrap();
+        let hv = params::snapshot(w)
+            .into_iter()
+            .find_map(|(id, v)| match (id.as_str(), v) {
+                ("h", ParamSnapshot::F64(x)) => Some(x),
+                _ => None,
+            })
+            .unwrap();
+        (hv, w.data().unwrap(), w.readouts())
+    };
+    let mut seen = Vec::new();
+    for key in [Key::Plus, Key::Plus, Key::Minus, Key::Minus, Key::Minus] {
+        press(&mut h, key);
+        let (hv, data, readouts) = state(&mut h);
+        seen.push(hv);
+        let t_end = readouts
+            .iter()
+            .find(|r| r.name == "t_end")
+            .map(|r| r.value)
+            .unwrap();
+        for (series, p) in &data.series {
+            assert_eq!(
+                p.ts.last(),
+                Some(&t_end),
+                "{series} at h = {hv} ends at t_end"
+            );
+        }
+    }
+    assert_eq!(seen, [1.0, 2.0, 1.0, 0.5, 0.2]);
+
+    // hovering the plot adds no shapes (egui_plot's crosshair drew two lines)
+    let plot = lectern::app::drawn_widgets(&h.ctx)
+        .into_iter()
+        .find(|w| w.slide == 3)
+        .unwrap()
+        .drawn;
+    h.event(Event::PointerMoved(Pos2::new(2000.0, 2000.0)));
+    h.run_steps(2);
+    let away = h.output().shapes.len();
+    h.event(Event::PointerMoved(plot.center()));
+    h.run_steps(2);
+    assert_eq!(h.output().shapes.len(), away, "hovering adds shapes");
+
+    h.event(Event::Text("?".into()));
+    h.run_steps(2);
+    let help = painted_text(&h);
+    for (keys, what) in [
+        ("- +", "step size h"),
+        ("[ ]", "step back / forward"),
+        ("drag", "move the start"),
+    ] {
+        assert!(
+            help.contains(keys) && help.contains(what),
+            "{keys} {what} in the ? list"
+        );
+    }
+}

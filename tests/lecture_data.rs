@@ -21,6 +21,11 @@ struct Exported {
 }
 
 fn export(ids: &[&str]) -> Exported {
+    export_deck(only(ids))
+}
+
+/// The lecture with only the slides with these ids.
+fn only(ids: &[&str]) -> Deck {
     let mut deck = lecture();
     deck.slides.retain(|s| ids.contains(&s.key()));
     assert_eq!(
@@ -28,6 +33,10 @@ fn export(ids: &[&str]) -> Exported {
         ids.len(),
         "every id is a slide of the lecture"
     );
+    deck
+}
+
+fn export_deck(deck: Deck) -> Exported {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("data");
     let files = lectern::cli::export_data::write_data(&deck, &out, &Default::default()).unwrap();
@@ -369,4 +378,152 @@ fn the_rk4_slide_names_the_typos_colour() {
         text.contains(&format!("{name} line")),
         "{text:?} does not say the {name} line"
     );
+}
+
+/// The stiff slide's energy, computed here from the CSV's states and the problem file's k
+/// (independently of the widget's own energy expression).
+fn stiff_energy(x: &[f64], k: f64) -> f64 {
+    // rows: t, x1, v1, x2, v2
+    let (x1, v1, x2, v2) = (x[1], x[2], x[3], x[4]);
+    0.5 * (v1 * v1 + v2 * v2) + 0.5 * x1 * x1 + 0.5 * k * (x2 - x1).powi(2)
+}
+
+fn stiff_k() -> f64 {
+    let p = lectern::ode::problem::Problem::load(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("slides/problems/stiff-spring.ron"),
+    )
+    .unwrap();
+    p.params.iter().find(|(n, _)| n == "k").unwrap().1
+}
+
+/// The optional stiff slide's defaults make its point: at h = 0.1 on k = 1000 explicit Euler
+/// and RK4 explode, implicit Euler stays stable but drains the energy, implicit midpoint keeps
+/// it, and radau5 finishes in few steps.
+#[test]
+fn the_stiff_slide_explodes_damps_and_keeps() {
+    let e = export(&["stiff"]);
+    let k = stiff_k();
+    assert!(e.csv["stiff"].starts_with("series,t,x1,v1,x2,v2\n"));
+    let grows = |key: &str| {
+        let rows = e.rows("stiff", key);
+        let size = |r: &Vec<f64>| r[1].abs().max(r[3].abs());
+        rows.iter().map(size).fold(0.0, f64::max) / size(&rows[0])
+    };
+    for key in ["euler", "rk4"] {
+        let g = grows(key);
+        assert!(g > 10.0, "{key}: |x| grows {g}×, not > 10×");
+        assert!(e.readout("stiff", "diverged_at", key) < 10.0, "{key}");
+    }
+    let energy = |key: &str| -> Vec<f64> {
+        e.rows("stiff", key)
+            .iter()
+            .map(|r| stiff_energy(r, k))
+            .collect()
+    };
+    let ie = energy("implicit-euler");
+    let decay = 1.0 - ie.last().unwrap() / ie[0];
+    assert!(decay > 0.2, "implicit Euler's energy decays {decay}");
+    let im = energy("implicit-midpoint");
+    for v in &im {
+        assert!(
+            (v / im[0] - 1.0).abs() < 0.01,
+            "implicit midpoint: {}",
+            v / im[0]
+        );
+    }
+    // the widget's own readout agrees with the CSV's energy
+    let printed = e.readout("stiff", "energy_end", "implicit-euler");
+    assert!(
+        (printed - ie.last().unwrap() / ie[0]).abs() < 1e-9,
+        "{printed}"
+    );
+    // the adaptive method ends near the reference and took large steps
+    let radau_rows = e.rows("stiff", "radau5");
+    assert_eq!(*radau_rows.last().unwrap().first().unwrap(), 10.0);
+    let err = e.readout("stiff", "error_at_end", "radau5");
+    assert!(err < 1e-3, "radau5 ends {err} from the reference");
+    let steps = e.readout("stiff", "steps", "radau5");
+    assert_eq!(steps as usize, radau_rows.len() - 1);
+}
+
+/// At equal end error the adaptive implicit method takes far fewer steps than RK4: RK4's h is
+/// walked down from the slide's 0.1 by 5 % at a time until RK4 finishes with an error at t_end
+/// no larger than radau5's — the stiff spring's stability limit comes first, and below it
+/// RK4 is already more accurate than asked: its step is set by stability, not accuracy.
+#[test]
+fn radau5_takes_far_fewer_steps_than_rk4_at_equal_error() {
+    let with_h = |h: f64| {
+        let mut deck = only(&["stiff"]);
+        for b in &mut deck.slides[0].body {
+            if let Block::Widget(lectern::deck::widgets::WidgetSpec::Energy(s)) = b {
+                s.h = h;
+            }
+        }
+        export_deck(deck)
+    };
+    let mut found = None;
+    for j in 1..120 {
+        let h = 0.1 * 0.95_f64.powi(j);
+        let e = with_h(h);
+        let radau_err = e.readout("stiff", "error_at_end", "radau5");
+        let radau_steps = e.readout("stiff", "steps", "radau5");
+        let rk4 = e.readouts["stiff"]
+            .iter()
+            .find(|r| r.0 == "error_at_end" && r.1 == "rk4")
+            .map(|r| r.2);
+        if let Some(rk4_err) = rk4
+            && rk4_err <= radau_err
+        {
+            found = Some((
+                h,
+                rk4_err,
+                radau_err,
+                e.readout("stiff", "steps", "rk4"),
+                radau_steps,
+            ));
+            break;
+        }
+    }
+    let (h, rk4_err, radau_err, rk4_steps, radau_steps) =
+        found.expect("RK4 reaches radau5's error at some h ≥ 0.0003");
+    eprintln!(
+        "equal error: RK4 h = {h}, error {rk4_err:e}, {rk4_steps} steps; radau5 error {radau_err:e}, {radau_steps} steps"
+    );
+    assert!(
+        radau_steps * 5.0 <= rk4_steps,
+        "radau5 {radau_steps} steps vs RK4 {rk4_steps} at h = {h}"
+    );
+}
+
+/// The implicit methods' regions, from `export --data`: implicit Euler's boundary is the
+/// circle |z − 1| = 1, radau5's lies in Re z > 0 (A-stable), and the plot box is not absurdly
+/// wide.
+#[test]
+fn the_implicit_regions_are_their_true_shapes() {
+    let e = export(&["stiff-stability"]);
+    let ie = e.rows("stiff-stability", "implicit-euler");
+    assert!(ie.len() > 50, "{} points", ie.len());
+    for z in &ie {
+        let d = (z[0] - 1.0).hypot(z[1]);
+        assert!((d - 1.0).abs() < 1e-3, "{z:?} is {d} from 1");
+    }
+    let radau = e.rows("stiff-stability", "radau5");
+    assert!(radau.len() > 50, "{} points", radau.len());
+    assert!(
+        radau.iter().all(|z| z[0] > 0.0),
+        "radau5's boundary crosses into Re z ≤ 0"
+    );
+    let plot = [
+        e.readout("stiff-stability", "plot_re_min", ""),
+        e.readout("stiff-stability", "plot_re_max", ""),
+    ];
+    assert!(plot[1] - plot[0] < 30.0, "{plot:?}");
+    // at λ = −10 ± 141i and h = 0.05 RK4 is past its limit (0.0204), the implicit methods
+    // never are
+    let rk4 = e.readout("stiff-stability", "stable_h", "rk4");
+    assert!(rk4 > 0.019 && rk4 < 0.021, "{rk4}");
+    assert!(rk4 < e.readout("stiff-stability", "h", ""));
+    for key in ["implicit-euler", "implicit-midpoint", "radau5"] {
+        assert_eq!(e.readout("stiff-stability", "stable_h", key), 10.0, "{key}");
+    }
 }

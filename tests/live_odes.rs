@@ -217,7 +217,9 @@ fn export_data_and_check_handle_the_adaptive_pairs() {
             "slide-01-w1-readouts.csv",
             "slide-01-w2.csv",
             "slide-01-w2-readouts.csv",
-            "slide-01-w3.csv"
+            "slide-01-w3.csv",
+            // the work-precision caption's best errors, from the whole study
+            "slide-01-w3-readouts.csv"
         ]
     );
     let text = |i: usize| std::fs::read_to_string(&files[i]).unwrap();

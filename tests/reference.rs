@@ -8,7 +8,7 @@ use std::path::Path;
 
 use lectern::deck::widgets::scene::{SceneCameraSpec, SceneToggles, SceneView};
 use lectern::deck::widgets::{
-    ConvergenceSpec, NeptuneSpec, ParallelTransportSpec, RigidBodySpec, SceneSpec,
+    ConvergenceSpec, EnergySpec, NeptuneSpec, ParallelTransportSpec, RigidBodySpec, SceneSpec,
     SimulationLoopSpec, SlopeFieldSpec, SpiralSpec, StabilitySpec, StepSpec, TaylorSpec,
     WidgetSpec, WorkPrecisionSpec,
 };
@@ -147,7 +147,7 @@ fn every_block_and_its_fields_are_in_the_reference() {
 fn every_widget_and_every_widget_field_is_in_the_reference() {
     let doc = reference();
     let widgets = variants::<WidgetSpec>();
-    assert_eq!(widgets.len(), 12, "{widgets:?}");
+    assert_eq!(widgets.len(), 13, "{widgets:?}");
     let fields_of: Vec<(&str, Vec<&str>)> = vec![
         ("SlopeField", struct_fields::<SlopeFieldSpec>()),
         ("StepConstruction", struct_fields::<StepSpec>()),
@@ -164,6 +164,7 @@ fn every_widget_and_every_widget_field_is_in_the_reference() {
         ),
         ("SimulationLoop", struct_fields::<SimulationLoopSpec>()),
         ("Scene", struct_fields::<SceneSpec>()),
+        ("Energy", struct_fields::<EnergySpec>()),
     ];
     // every variant has its spec listed here (a new widget needs a line above and a section)
     let listed: Vec<&str> = fields_of.iter().map(|(w, _)| *w).collect();

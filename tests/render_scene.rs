@@ -199,7 +199,7 @@ fn hot_reload_keeps_the_old_pipeline_on_error_and_swaps_in_the_fix() {
     std::fs::write(
         &water,
         good.replace(
-            "return with_normals_view(mix(refracted, reflected, fresnel) + glint, n, uv0);",
+            "return with_normals_view(color, n, straight.rgb);",
             "return vec4f(1.0, 0.0, 0.0, 1.0);",
         ),
     )

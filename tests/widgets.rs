@@ -475,8 +475,8 @@ fn params_round_trip_through_reload_and_reset() {
     let kinds: std::collections::BTreeSet<_> = specs.iter().map(|s| s.kind()).collect();
     assert_eq!(
         kinds.len(),
-        12,
-        "the deck shows all twelve widgets: {kinds:?}"
+        13,
+        "the deck shows all thirteen widgets: {kinds:?}"
     );
     for spec in specs {
         let mut w = spec.instantiate_in(Some(deck_path()));

@@ -216,8 +216,8 @@ impl SceneMode {
         ui.label(what);
         ui.monospace(format!(
             "render {}×{} px ({:.0} %), fish detail {:.2}\nfish drawn full/medium/coarse/far: {}/{}/{}/{}\n\
-             shadow edges {}, school stepped every {}, water and seabed grids {} · frame \
-             {:.0} ms",
+             shadow edges {}, school stepped every {}, water and seabed grids {}, water normal \
+             {} · frame {:.0} ms",
             info.render_size.0,
             info.render_size.1,
             rung.render_scale * 100.0,
@@ -239,6 +239,10 @@ impl SceneMode {
                 "every other vertex"
             } else {
                 "full"
+            },
+            match rung.water_normals.pixel_waves() {
+                n if n as usize >= scene::model::MAX_WAVES => "all waves per pixel".to_owned(),
+                n => format!("{n} short waves per pixel"),
             },
             mean(&self.interval_ms),
         ));

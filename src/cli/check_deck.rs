@@ -218,6 +218,16 @@ impl Walk<'_> {
                     self.at(&value_at, format!("scene: {message}"));
                 }
             }
+            WidgetSpec::Energy(s) => {
+                // the energy compiles against the equation it measures (which loaded: its
+                // own faults are reported with the deck's files)
+                if let Ok(loaded) = s.ode.load(Some(self.file))
+                    && let Err(m) =
+                        crate::widgets::energy::compile_energy(&s.energy, &loaded.problem)
+                {
+                    self.at(&format!("{at}.energy"), m);
+                }
+            }
             WidgetSpec::Stability(s) => {
                 for (k, t) in s.tableaux.iter().enumerate() {
                     if let Err((value, m)) = t.validate_at() {

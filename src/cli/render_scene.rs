@@ -5,6 +5,7 @@ use std::time::Instant;
 
 use anyhow::{Context, Result};
 
+use crate::render::frame::RenderSettings;
 use crate::render::{DebugView, Headless, SHADER_DIR};
 use crate::scene::{self, DEFAULT_SCENE};
 
@@ -43,13 +44,60 @@ pub struct Args {
     #[arg(long)]
     pub fish_detail: Option<f32>,
     /// Draw and simulate as step K of the automatic quality's ladder does (1 = full quality,
-    /// 8 = the coarsest; the presenter panel shows the step in use): render scale, fish detail,
-    /// shadow filter and school stepping
+    /// 9 = the coarsest; the presenter panel shows the step in use): render scale, fish detail,
+    /// shadow filter, grids, water normals and school stepping
     #[arg(long, value_name = "K", conflicts_with_all = ["render_scale", "fish_detail"])]
     pub rung: Option<usize>,
-    /// Leave the caustics out (to see or time what they add)
-    #[arg(long)]
-    pub no_caustics: bool,
+    /// Techniques to leave out, comma-separated (to see or time what each adds): env-map,
+    /// normal-maps, shadows, fish-shadows, brdf, fresnel, caustics, fxaa
+    #[arg(long, value_delimiter = ',', value_parser = parse_technique)]
+    pub off: Vec<Technique>,
+}
+
+/// A technique `--off` can leave out.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Technique {
+    EnvMap,
+    NormalMaps,
+    Shadows,
+    FishShadows,
+    Brdf,
+    Fresnel,
+    Caustics,
+    Fxaa,
+}
+
+pub fn parse_technique(s: &str) -> Result<Technique, String> {
+    Ok(match s.trim() {
+        "env-map" => Technique::EnvMap,
+        "normal-maps" => Technique::NormalMaps,
+        "shadows" => Technique::Shadows,
+        "fish-shadows" => Technique::FishShadows,
+        "brdf" => Technique::Brdf,
+        "fresnel" => Technique::Fresnel,
+        "caustics" => Technique::Caustics,
+        "fxaa" => Technique::Fxaa,
+        _ => {
+            return Err(format!(
+                "unknown technique {s:?}: env-map, normal-maps, shadows, fish-shadows, brdf, \
+                 fresnel, caustics, fxaa"
+            ));
+        }
+    })
+}
+
+/// Switches `t` off in `settings`.
+fn switch_off(settings: &mut RenderSettings, t: Technique) {
+    match t {
+        Technique::EnvMap => settings.env_map = false,
+        Technique::NormalMaps => settings.normal_maps = false,
+        Technique::Shadows => settings.shadows = false,
+        Technique::FishShadows => settings.fish_shadows = false,
+        Technique::Brdf => settings.brdf = false,
+        Technique::Fresnel => settings.fresnel = false,
+        Technique::Caustics => settings.caustics = false,
+        Technique::Fxaa => settings.fxaa = false,
+    }
 }
 
 pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
@@ -102,7 +150,9 @@ pub fn run(args: Args) -> Result<()> {
     let t0 = Instant::now();
     let mut h = Headless::new(scene, &args.shaders)?;
     h.settings.debug_view = args.view;
-    h.settings.caustics = !args.no_caustics;
+    for &t in &args.off {
+        switch_off(&mut h.settings, t);
+    }
     if let Some(s) = args.render_scale {
         anyhow::ensure!(
             (0.25..=1.0).contains(&s),

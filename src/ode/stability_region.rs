@@ -214,12 +214,24 @@ pub struct Region {
 }
 
 /// The region of `r` (a stability function): its extent, then the contour on a grid over a
-/// box padded by a tenth around it and symmetric about the real axis, with a row on it.
+/// box padded by a tenth around it and symmetric about the real axis, with a row on it. An
+/// unbounded region (an implicit method: implicit Euler is stable outside the disc
+/// |z − 1| ≤ 1) is traced over the extent of where it is *not* stable when that is bounded,
+/// so its boundary is as fine as a bounded region's; else over the largest box.
 pub fn region(r: impl Fn(Complex) -> Complex) -> Option<Region> {
     let abs_r = |z: Complex| cabs(r(z));
     let (b, unbounded) = region_extent(abs_r)?;
+    let traced = if unbounded {
+        // |R| ≥ 1 where 1/|R| ≤ 1: the unstable set with its edge
+        match region_extent(|z| 1.0 / abs_r(z)) {
+            Some((u, false)) => u,
+            _ => b,
+        }
+    } else {
+        b
+    };
     let grid = Grid {
-        bounds: pad_symmetric(b, 0.1),
+        bounds: pad_symmetric(traced, 0.1),
         nx: FINE,
         ny: FINE,
     };
@@ -229,6 +241,21 @@ pub fn region(r: impl Fn(Complex) -> Complex) -> Option<Region> {
         unbounded,
         boundary: contour(abs_r, &grid, &vals),
     })
+}
+
+/// The box of a region's closed boundary curves (an unbounded region's open ones, such as
+/// implicit midpoint's imaginary axis, have no extent to fit), or `None` if it has none.
+pub fn closed_boundary_bounds(r: &Region) -> Option<Bounds> {
+    r.boundary
+        .iter()
+        .filter(|l| l.len() > 2 && l.first() == l.last())
+        .flatten()
+        .fold(None, |acc: Option<Bounds>, z| {
+            Some(match acc {
+                None => (z.0, z.0, z.1, z.1),
+                Some(b) => (b.0.min(z.0), b.1.max(z.0), b.2.min(z.1), b.3.max(z.1)),
+            })
+        })
 }
 
 /// `b` widened by `frac` of its size on each side and made symmetric about the real axis.

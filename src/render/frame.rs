@@ -7,6 +7,7 @@ use glam::Vec3;
 
 use crate::scene::model::MAX_WAVES;
 use crate::scene::quality::Rung;
+pub use crate::scene::quality::WaterNormals;
 use crate::scene::snapshot::{FAR_M, NEAR_M};
 use crate::scene::{FrameSnapshot, Scene};
 
@@ -100,6 +101,12 @@ pub struct RenderSettings {
     /// quarter of the triangles; the lowest quality rungs, where the grid had more triangles
     /// than the frame had pixels).
     pub coarse_grids: bool,
+    pub water_normals: WaterNormals,
+    /// The fish cast shadows (into the same shadow map as the rocks and bodies); `shadows`
+    /// off switches every shadow off.
+    pub fish_shadows: bool,
+    /// FXAA on the geometric edges in the tone mapping pass (Lottes 2011, fxaa.wgsl)
+    pub fxaa: bool,
 }
 
 impl RenderSettings {
@@ -114,6 +121,7 @@ impl RenderSettings {
             ShadowFilter::Bilinear
         };
         self.coarse_grids = rung.coarse_grids;
+        self.water_normals = rung.water_normals;
     }
 }
 
@@ -132,6 +140,9 @@ impl Default for RenderSettings {
             fish_detail: 1.0,
             shadow_filter: ShadowFilter::Pcf3x3,
             coarse_grids: false,
+            water_normals: WaterNormals::PerPixel,
+            fish_shadows: true,
+            fxaa: true,
         }
     }
 }
@@ -189,7 +200,9 @@ pub struct Globals {
     /// the angle one pixel of the HDR target subtends, radians (waves shorter than a few
     /// pixels fade out)
     pub rad_per_px: f32,
-    pub _pad: f32,
+    /// the sum of the waves' amplitudes: no crest or trough is farther from the mean level,
+    /// metres
+    pub wave_reach_m: f32,
     pub waves: [WaveGpu; MAX_WAVES],
 }
 
@@ -223,11 +236,17 @@ fn on(b: bool) -> u32 {
     u32::from(b)
 }
 
+/// The waves as the shaders read them: sorted long to short and ending at the last slot, so
+/// the water's vertex shader can take the first slots (the long waves, smooth over a grid
+/// cell) and its fragment shader the rest (`WATER_VERTEX_WAVES` in common.wgsl). The sum does
+/// not depend on the order: it is the CPU twin's (`crate::waves::WaveSum`).
 pub fn waves_gpu(scene: &Scene) -> [WaveGpu; MAX_WAVES] {
-    let all = scene.water.all_waves();
-    let n_waves = all.len().min(MAX_WAVES);
+    let mut all = scene.water.all_waves();
+    all.truncate(MAX_WAVES);
+    let n_waves = all.len();
+    all.sort_by(|a, b| b.wavelength.total_cmp(&a.wavelength));
     let mut waves = [WaveGpu::zeroed(); MAX_WAVES];
-    for (slot, w) in waves.iter_mut().zip(&all) {
+    for (slot, w) in waves[MAX_WAVES - n_waves..].iter_mut().zip(&all) {
         let d = glam::Vec2::from(w.direction).normalize_or(glam::Vec2::X);
         let k = std::f32::consts::TAU / w.wavelength;
         *slot = WaveGpu {
@@ -288,7 +307,7 @@ pub fn globals(
         caustics_half_extent_m: super::caustics::half_extent_m(scene),
         caustics_depth_m: super::caustics::focus_depth_m(scene),
         rad_per_px: snap.camera.fov_y_rad / size_px.1.max(1) as f32,
-        _pad: 0.0,
+        wave_reach_m: w.all_waves().iter().map(|w| w.amplitude.abs()).sum(),
         waves: waves_gpu(scene),
     }
 }
@@ -380,7 +399,7 @@ mod tests {
                 std::mem::offset_of!(Globals, caustics_depth_m),
             ),
             ("rad_per_px", std::mem::offset_of!(Globals, rad_per_px)),
-            ("_pad", std::mem::offset_of!(Globals, _pad)),
+            ("wave_reach_m", std::mem::offset_of!(Globals, wave_reach_m)),
             ("waves", std::mem::offset_of!(Globals, waves)),
         ];
         let wgsl: Vec<(&str, usize)> = members

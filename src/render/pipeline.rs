@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 
 use crate::diag::Diagnostic;
 
-use super::frame::ShadowFilter;
+use super::frame::{ShadowFilter, WaterNormals};
 use super::layouts::{Layout, Layouts};
 use super::shaders::{self, Checked};
 use super::{caustics, debug, fish, interface, pbr, shadow, sky, tonemap, water};
@@ -18,6 +18,9 @@ use super::{caustics, debug, fish, interface, pbr, shadow, sky, tonemap, water};
 pub const HDR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 pub const CUBE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+/// The tone-mapped image at the render size, before it is scaled up to the output: sRGB
+/// encoded, so 8 bits keep the dark tones and filtering happens on linear values.
+pub const DISPLAY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
 
 /// Everything a technique's builder needs besides its shader module.
 pub struct Ctx<'a> {
@@ -90,9 +93,28 @@ impl Ctx<'_> {
         }))
     }
 
+    /// The water's pipelines: one per [`ShadowFilter`] and [`WaterNormals`]
+    /// (`WATER_VERTEX_WAVES` in common.wgsl).
+    pub fn water_pipelines(
+        &self,
+        module: &wgpu::ShaderModule,
+        d: PipelineDesc,
+    ) -> PerShadowFilter<[wgpu::RenderPipeline; 3]> {
+        PerShadowFilter(ShadowFilter::ALL.map(|f| {
+            WaterNormals::ALL.map(|w| {
+                let constants = [
+                    ("SHADOW_PCF_RADIUS", f.pcf_radius_texels()),
+                    ("WATER_VERTEX_WAVES", w.vertex_waves()),
+                ];
+                let first = f == ShadowFilter::ALL[0] && w == WaterNormals::ALL[0];
+                self.pipeline_with(module, d.clone(), &constants, first)
+            })
+        }))
+    }
+
     /// Creates `d` with those of `constants` the shader declares (a shader edited to drop
     /// one still builds, with the declaration's default if it keeps it).
-    fn pipeline_with(
+    pub fn pipeline_with(
         &self,
         module: &wgpu::ShaderModule,
         d: PipelineDesc,

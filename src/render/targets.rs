@@ -1,9 +1,11 @@
 //! The frame's own render targets: the HDR colour and depth the scene is drawn into (at the
 //! render size, which dynamic resolution may make smaller than the display), the copy of the
-//! opaque colour the water refracts (its alpha the distance from the eye), and the bind groups that read them.
+//! opaque colour the water refracts (its alpha the distance from the eye), the tone-mapped
+//! display image at the same size (scaled up to the output by the last pass), and the bind
+//! groups that read them.
 
 use super::layouts::Layouts;
-use super::pipeline::{DEPTH_FORMAT, HDR_FORMAT};
+use super::pipeline::{DEPTH_FORMAT, DISPLAY_FORMAT, HDR_FORMAT};
 
 /// A colour attachment cleared to `clear` and stored (every pass that draws a new target).
 pub fn cleared_color(
@@ -70,8 +72,12 @@ pub struct Targets {
     pub scene_color: wgpu::Texture,
     /// group 1 of the water pass
     pub water_inputs: wgpu::BindGroup,
-    /// group 0 of the tone mapping pass
+    /// group 0 of the tone mapping pass (reads `hdr`)
     pub tonemap: wgpu::BindGroup,
+    /// the tone-mapped (and anti-aliased) image at the render size
+    pub display_view: wgpu::TextureView,
+    /// group 0 of the pass that scales `display_view` up to the output
+    pub upscale: wgpu::BindGroup,
 }
 
 impl Targets {
@@ -118,6 +124,23 @@ impl Targets {
                 entry(2, wgpu::BindingResource::Sampler(linear_clamp)),
             ],
         });
+        let display = texture_2d(
+            device,
+            "display",
+            size,
+            DISPLAY_FORMAT,
+            U::RENDER_ATTACHMENT | U::TEXTURE_BINDING,
+        );
+        let display_view = display.create_view(&Default::default());
+        let upscale = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("upscale"),
+            layout: &layouts.tonemap.layout,
+            entries: &[
+                entry(0, post_params.as_entire_binding()),
+                entry(1, wgpu::BindingResource::TextureView(&display_view)),
+                entry(2, wgpu::BindingResource::Sampler(linear_clamp)),
+            ],
+        });
         Self {
             size,
             hdr,
@@ -126,6 +149,8 @@ impl Targets {
             scene_color,
             water_inputs,
             tonemap,
+            display_view,
+            upscale,
         }
     }
 }

@@ -6,6 +6,7 @@
 //! bind group, defined here): never the depth texture it tests against, which WebGL2 and GLES
 //! cannot sample while it is attached.
 
+use super::frame::{ShadowFilter, WaterNormals};
 use super::layouts::{FLOAT, Layout, sampler, texture};
 use super::pipeline::{Ctx, HDR_FORMAT, NO_BIAS, PerShadowFilter, PipelineDesc, Technique};
 
@@ -33,7 +34,14 @@ pub fn vertex_layout() -> wgpu::VertexBufferLayout<'static> {
 }
 
 pub struct WaterPipeline {
-    pub pipeline: PerShadowFilter<wgpu::RenderPipeline>,
+    /// per shadow filter, then per [`WaterNormals`] (its `index`)
+    pipeline: PerShadowFilter<[wgpu::RenderPipeline; 3]>,
+}
+
+impl WaterPipeline {
+    pub fn get(&self, filter: ShadowFilter, normals: WaterNormals) -> &wgpu::RenderPipeline {
+        &self.pipeline.get(filter)[normals.index()]
+    }
 }
 
 impl Technique for WaterPipeline {
@@ -42,7 +50,7 @@ impl Technique for WaterPipeline {
     fn build(ctx: &Ctx, m: &wgpu::ShaderModule) -> Self {
         let l = ctx.layouts;
         Self {
-            pipeline: ctx.lit_pipelines(
+            pipeline: ctx.water_pipelines(
                 m,
                 PipelineDesc {
                     label: "water",

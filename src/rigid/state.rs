@@ -176,6 +176,16 @@ impl Integrator {
         }
     }
 
+    /// The same method as the ODE layer names it (its CLI key, its colour).
+    pub fn method(self) -> crate::ode::Method {
+        match self {
+            Integrator::Euler => crate::ode::Method::Euler,
+            Integrator::Midpoint => crate::ode::Method::Midpoint,
+            Integrator::Rk4 => crate::ode::Method::Rk4,
+            Integrator::SymplecticEuler => crate::ode::Method::SymplecticEuler,
+        }
+    }
+
     /// The Butcher tableau of an explicit Runge–Kutta method (`RigidBody::step` runs the same
     /// arithmetic over fixed-size arrays; this is its reference).
     pub fn tableau(self) -> Option<Tableau> {

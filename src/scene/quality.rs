@@ -4,7 +4,47 @@
 //! Pure logic — fed measured frame times, it says what to draw and simulate with — so the
 //! window, the tests and anything else can drive it.
 
-use super::model::Quality;
+use super::model::{MAX_WAVES, Quality};
+
+/// Where the water's normal comes from: every wave summed again per pixel, or only the short
+/// ones, the long ones' terms summed per vertex and interpolated (smooth over a grid cell, so
+/// the picture barely changes while the per-pixel work falls to a fraction: the lower quality
+/// rungs). `WATER_VERTEX_WAVES` in shaders/common.wgsl, a pipeline constant.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum WaterNormals {
+    #[default]
+    PerPixel,
+    /// the 12 shortest waves per pixel
+    Short12,
+    /// the 6 shortest waves per pixel
+    Short6,
+}
+
+impl WaterNormals {
+    pub const ALL: [WaterNormals; 3] = [Self::PerPixel, Self::Short12, Self::Short6];
+
+    /// How many waves the fragment shader sums per pixel.
+    pub fn pixel_waves(self) -> u32 {
+        match self {
+            Self::PerPixel => MAX_WAVES as u32,
+            Self::Short12 => 12,
+            Self::Short6 => 6,
+        }
+    }
+
+    /// The slots summed per vertex only (the longest waves come first).
+    pub fn vertex_waves(self) -> f64 {
+        f64::from(MAX_WAVES as u32 - self.pixel_waves())
+    }
+
+    pub fn index(self) -> usize {
+        match self {
+            Self::PerPixel => 0,
+            Self::Short12 => 1,
+            Self::Short6 => 2,
+        }
+    }
+}
 
 /// What the scene is drawn and simulated with on one rung of the ladder.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -22,9 +62,17 @@ pub struct Rung {
     pub school_every: u32,
     /// the water and seabed grids over every other row and column of their vertices
     pub coarse_grids: bool,
+    /// how many of the waves the water's normal sums per pixel (the rest per vertex)
+    pub water_normals: WaterNormals,
 }
 
-const fn rung(render_scale: f32, fish_detail: f32, soft_shadows: bool, school_every: u32) -> Rung {
+const fn rung(
+    render_scale: f32,
+    fish_detail: f32,
+    soft_shadows: bool,
+    school_every: u32,
+    water_normals: WaterNormals,
+) -> Rung {
     Rung {
         render_scale,
         fish_detail,
@@ -33,19 +81,23 @@ const fn rung(render_scale: f32, fish_detail: f32, soft_shadows: bool, school_ev
         // with one shadow tap: the rungs drawn at half the window's size or less, where the
         // full grids had more triangles than the frame had pixels
         coarse_grids: !soft_shadows,
+        water_normals,
     }
 }
 
+use WaterNormals::{PerPixel, Short6, Short12};
+
 /// From full quality down; each rung costs less to draw.
-pub const LADDER: [Rung; 8] = [
-    rung(1.0, 1.0, true, 1),
-    rung(1.0, 0.6, true, 1),
-    rung(0.85, 0.45, true, 1),
-    rung(0.75, 0.3, true, 1),
-    rung(0.65, 0.2, true, 1),
-    rung(0.55, 0.12, false, 2),
-    rung(0.45, 0.06, false, 2),
-    rung(0.35, 0.0, false, 3),
+pub const LADDER: [Rung; 9] = [
+    rung(1.0, 1.0, true, 1, PerPixel),
+    rung(1.0, 0.6, true, 1, PerPixel),
+    rung(1.0, 0.6, true, 1, Short12),
+    rung(0.85, 0.45, true, 1, Short12),
+    rung(0.75, 0.3, true, 1, Short12),
+    rung(0.65, 0.2, true, 1, Short6),
+    rung(0.55, 0.12, false, 2, Short6),
+    rung(0.45, 0.06, false, 2, Short6),
+    rung(0.35, 0.0, false, 3, Short6),
 ];
 
 /// Frames to wait after a change before judging the new rung.
@@ -95,7 +147,7 @@ impl QualityController {
             Quality::Fixed {
                 render_scale,
                 fish_detail,
-            } => rung(render_scale, fish_detail, true, 1),
+            } => rung(render_scale, fish_detail, true, 1, PerPixel),
         }
     }
 
@@ -150,7 +202,8 @@ mod tests {
 
     fn cost(r: &Rung, full_ms: f32) -> f32 {
         let scale = r.render_scale;
-        full_ms * (0.2 + 0.5 * scale * scale + 0.3 * r.fish_detail)
+        let water = r.water_normals.pixel_waves() as f32 / MAX_WAVES as f32;
+        full_ms * (0.1 + 0.5 * scale * scale + 0.3 * r.fish_detail + 0.1 * water)
     }
 
     #[test]
@@ -194,7 +247,7 @@ mod tests {
             fish_detail: 0.25,
         });
         c.observe(1000.0);
-        assert_eq!(c.settings(), rung(0.5, 0.25, true, 1));
+        assert_eq!(c.settings(), rung(0.5, 0.25, true, 1, PerPixel));
     }
 
     #[test]
@@ -204,11 +257,12 @@ mod tests {
             assert!(b.render_scale <= a.render_scale && b.fish_detail <= a.fish_detail);
             assert!(b.soft_shadows <= a.soft_shadows && b.school_every >= a.school_every);
             assert!(b.coarse_grids >= a.coarse_grids);
+            assert!(b.water_normals.pixel_waves() <= a.water_normals.pixel_waves());
             assert!(b != a);
         }
         assert_eq!(
             LADDER[0],
-            rung(1.0, 1.0, true, 1),
+            rung(1.0, 1.0, true, 1, PerPixel),
             "the top is full quality"
         );
     }

@@ -54,6 +54,7 @@ macro_rules! ode_plumbing {
 
 pub mod colors;
 pub mod convergence;
+pub mod energy;
 pub mod labels;
 pub mod live_ode;
 pub mod methods;
@@ -207,6 +208,7 @@ impl WidgetSpec {
                 s.clone(),
                 deck_path.and_then(std::path::Path::parent),
             )),
+            WidgetSpec::Energy(s) => Box::new(energy::Energy::new(s.clone(), deck_path)),
         }
     }
 }

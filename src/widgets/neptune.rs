@@ -24,9 +24,24 @@ const CLAMP: f64 = 2.5;
 
 /// A path clipped to |y| ≤ clamp: the visible points and, if it left, where.
 pub fn clip(path: &Path, clamp: f64) -> (Vec<[f64; 2]>, Option<[f64; 2]>) {
-    let mut pts: Vec<[f64; 2]> = Vec::with_capacity(path.ts.len());
-    for (t, x) in path.ts.iter().zip(&path.xs) {
-        let y = x[0];
+    let pts: Vec<[f64; 2]> = path
+        .ts
+        .iter()
+        .zip(&path.xs)
+        .map(|(t, x)| [*t, x[0]])
+        .collect();
+    clip_points(&pts, path.diverged_at, clamp)
+}
+
+/// Points (t, y) clipped to |y| ≤ clamp: the visible ones and, if the curve left (or its run
+/// diverged at `diverged_at`), where, on the clamp line.
+pub fn clip_points(
+    points: &[[f64; 2]],
+    diverged_at: Option<f64>,
+    clamp: f64,
+) -> (Vec<[f64; 2]>, Option<[f64; 2]>) {
+    let mut pts: Vec<[f64; 2]> = Vec::with_capacity(points.len());
+    for &[t, y] in points {
         if y.abs() > clamp {
             if let Some(&[tp, yp]) = pts.last() {
                 // cut the segment where it crosses the clamp line
@@ -36,17 +51,66 @@ pub fn clip(path: &Path, clamp: f64) -> (Vec<[f64; 2]>, Option<[f64; 2]>) {
                 pts.push(exit);
                 return (pts, Some(exit));
             }
-            return (pts, Some([*t, clamp * y.signum()]));
+            return (pts, Some([t, clamp * y.signum()]));
         }
-        pts.push([*t, y]);
+        pts.push([t, y]);
     }
-    let exit = path.diverged_at.map(|t| {
-        [
-            t,
-            clamp * path.last().first().copied().unwrap_or(1.0).signum(),
-        ]
+    let exit = diverged_at.map(|t| {
+        let last = points.last().map_or(1.0, |p| p[1]);
+        [t, clamp * if last < 0.0 { -1.0 } else { 1.0 }]
     });
     (pts, exit)
+}
+
+/// The red marker where a path left the view at `e` (pointing the way it went), and its label
+/// `text`, beside it (below it when it left upwards), to place with [`exit_labels_ui`].
+pub fn exit_marker(
+    p: &mut egui_plot::PlotUi<'_>,
+    e: [f64; 2],
+    text: String,
+    u: f32,
+) -> labels::PlotLabel {
+    let up = e[1] > 0.0;
+    p.points(
+        Points::new("diverged", vec![e])
+            .shape(if up {
+                MarkerShape::Up
+            } else {
+                MarkerShape::Down
+            })
+            .color(style::DIVERGED)
+            .radius(EXIT_MARKER_RADIUS * u)
+            .filled(true),
+    );
+    labels::PlotLabel {
+        text,
+        color: style::DIVERGED,
+        at: PlotPoint::new(e[0], e[1]),
+        anchor: if up {
+            egui::Align2::LEFT_TOP
+        } else {
+            egui::Align2::LEFT_BOTTOM
+        },
+    }
+}
+
+/// The exit markers' radius, in slide units.
+const EXIT_MARKER_RADIUS: f32 = 2.0 * style::KEY_MARKER_RADIUS;
+
+/// Places the exit markers' labels clear of the markers at `exits` and of the drawn `lines`.
+pub fn exit_labels_ui(
+    ui: &egui::Ui,
+    transform: &egui_plot::PlotTransform,
+    exit_labels: &[labels::PlotLabel],
+    exits: &[PlotPoint],
+    lines: &[Vec<[f64; 2]>],
+    u: f32,
+) {
+    let obstacles: Vec<egui::Rect> = exits
+        .iter()
+        .map(|&e| labels::marker_rect(transform, e, EXIT_MARKER_RADIUS * u))
+        .collect();
+    labels::draw(ui, transform, exit_labels, &obstacles, lines);
 }
 
 pub struct Neptune {
@@ -240,39 +304,13 @@ impl SlideWidget for Neptune {
                             .radius(0.6 * style::MARKER_RADIUS * u),
                     );
                     if let Some(e) = exit {
-                        p.points(
-                            Points::new("diverged", vec![*e])
-                                .shape(if e[1] > 0.0 {
-                                    MarkerShape::Up
-                                } else {
-                                    MarkerShape::Down
-                                })
-                                .color(style::DIVERGED)
-                                .radius(2.0 * style::KEY_MARKER_RADIUS * u)
-                                .filled(true),
-                        );
+                        let text = format!("{name} diverged: off to Neptune!");
+                        labels.push(exit_marker(p, *e, text, u));
                         obstacles_at.push(PlotPoint::new(e[0], e[1]));
-                        // beside the marker, below it when it left upwards
-                        let anchor = if e[1] > 0.0 {
-                            egui::Align2::LEFT_TOP
-                        } else {
-                            egui::Align2::LEFT_BOTTOM
-                        };
-                        labels.push(labels::PlotLabel {
-                            text: format!("{name} diverged: off to Neptune!"),
-                            color: style::DIVERGED,
-                            at: PlotPoint::new(e[0], e[1]),
-                            anchor,
-                        });
                     }
                 }
             });
-        let t = &shown.transform;
-        let obstacles: Vec<egui::Rect> = obstacles_at
-            .iter()
-            .map(|&e| labels::marker_rect(t, e, 2.0 * style::KEY_MARKER_RADIUS * u))
-            .collect();
-        labels::draw(ui, t, &labels, &obstacles, &lines);
+        exit_labels_ui(ui, &shown.transform, &labels, &obstacles_at, &lines, u);
     }
 
     fn params(&mut self) -> Vec<Param<'_>> {

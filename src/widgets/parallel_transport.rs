@@ -8,7 +8,7 @@ use egui::{Color32, Pos2, Rect, Sense, Stroke, pos2, vec2};
 use glam::{Mat3, Quat, Vec3};
 
 use super::style::{self, fmt_num};
-use super::{Param, SlideWidget};
+use super::{Param, Readout, SlideWidget};
 use crate::deck::widgets::ParallelTransportSpec;
 use crate::deck::widgets::parallel_transport::{FISH_RANGE, PITCH_RANGE_DEG, PathShape};
 use crate::school::frames::{self, FrameSample, TransportStep};
@@ -380,4 +380,49 @@ impl SlideWidget for ParallelTransport {
     }
 
     spec_plumbing!(ParallelTransport);
+
+    /// The step panel's numbers: `step`, `t_old_*`, `t_new_*`, `angle_deg`, `axis_*` (absent
+    /// on a straight step, where none is printed), `q_rotation_*`, `q_old_*`, `q_new_*`
+    /// (w, x, y, z), `frenet_flips` and `curvature_per_m` at the step.
+    fn readouts(&mut self) -> Vec<Readout> {
+        let n = self.fish_count();
+        let i = self.spec.step.min(n - 2);
+        let step = self.shown_step();
+        let mut v = vec![Readout::new("step", "", i as f64)];
+        let mut vec3 = |name: &str, x: Vec3| {
+            for (c, value) in ["x", "y", "z"].into_iter().zip(x.to_array()) {
+                v.push(Readout::new(format!("{name}_{c}"), "", f64::from(value)));
+            }
+        };
+        vec3("t_old", step.heading_old);
+        vec3("t_new", step.heading_new);
+        if let Some(axis) = step.axis {
+            vec3("axis", axis);
+        }
+        v.push(Readout::new(
+            "angle_deg",
+            "",
+            f64::from(step.angle_rad).to_degrees(),
+        ));
+        for (name, q) in [
+            ("q_rotation", step.q_rotation),
+            ("q_old", step.q_old),
+            ("q_new", step.q_new),
+        ] {
+            for (c, value) in ["w", "x", "y", "z"].into_iter().zip([q.w, q.x, q.y, q.z]) {
+                v.push(Readout::new(format!("{name}_{c}"), "", f64::from(value)));
+            }
+        }
+        v.push(Readout::new(
+            "frenet_flips",
+            "",
+            self.frenet_flips().len() as f64,
+        ));
+        v.push(Readout::new(
+            "curvature_per_m",
+            "",
+            f64::from(self.frames()[i].curvature_per_m),
+        ));
+        v
+    }
 }

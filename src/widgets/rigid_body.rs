@@ -10,7 +10,7 @@
 use glam::{DMat3, DVec3};
 
 use super::style::{self, fmt_num};
-use super::{Param, SlideWidget};
+use super::{Param, Readout, SlideWidget};
 use crate::deck::widgets::RigidBodySpec;
 use crate::rigid::{
     Integrator, MassProperties, NoForces, RigidBody, TriMesh, mirtich, point_lattice,
@@ -403,6 +403,41 @@ impl SlideWidget for RigidBodyView {
     }
 
     spec_plumbing!(RigidBody);
+
+    /// What the panels print, per method (series `euler`, …, `symplectic-euler`):
+    /// `energy_ratio`, `momentum_ratio`, `omega_body_x/y/z`, and the state they come from
+    /// (`time`, `q_w/x/y/z`, `l_x/y/z`: ω = R I_body⁻¹ Rᵀ L is checkable); then `t` and the
+    /// inertia line: `dims_*`, `n`, `inertia_mesh_*`, `inertia_points_*`, `inertia_rel_error`.
+    fn readouts(&mut self) -> Vec<Readout> {
+        self.advance();
+        let xyz = |name: &str, series: &str, v: DVec3| {
+            ["x", "y", "z"]
+                .into_iter()
+                .zip(v.to_array())
+                .map(|(axis, value)| Readout::new(format!("{name}_{axis}"), series, value))
+                .collect::<Vec<_>>()
+        };
+        let mut v = vec![Readout::new("t", "", self.spec.t)];
+        for run in &self.runs {
+            let key = run.body.integrator.method().name();
+            let q = run.body.state.q;
+            v.push(Readout::new("energy_ratio", key, run.energy_ratio()));
+            v.push(Readout::new("momentum_ratio", key, run.momentum_ratio()));
+            v.extend(xyz("omega_body", key, run.body.omega_body()));
+            v.push(Readout::new("time", key, run.body.time));
+            for (c, value) in ["w", "x", "y", "z"].into_iter().zip([q.w, q.x, q.y, q.z]) {
+                v.push(Readout::new(format!("q_{c}"), key, value));
+            }
+            v.extend(xyz("l", key, run.body.angular_momentum()));
+        }
+        let c = self.inertia_comparison();
+        v.extend(xyz("dims", "", c.dims));
+        v.push(Readout::new("n", "", c.n as f64));
+        v.extend(xyz("inertia_mesh", "", c.exact));
+        v.extend(xyz("inertia_points", "", c.points));
+        v.push(Readout::new("inertia_rel_error", "", c.relative_error()));
+        v
+    }
 }
 
 #[cfg(test)]

@@ -13,12 +13,19 @@ use super::methods::{
     MAX_DRAWN_POINTS, MethodEntry, MethodSet, Path, decimate, fixed_path, reference_path, steps_for,
 };
 use super::style::{self, fmt_num};
-use super::{Param, PlotData, SlideWidget};
+use super::{Param, PlotData, Readout, SlideWidget};
 use crate::deck::widgets::SpiralSpec;
 use crate::ode::problem::Problem;
 
 const H_RANGE: (f64, f64) = (0.005, 1.0);
 const MAX_STEPS: usize = 20_000;
+/// Radii printed under each panel: the first revolutions'.
+const PRINTED_TURNS: usize = 4;
+
+/// Euler's radius growth per step on the circle, √(1 + h²): |1 + ih| for z' = iz.
+fn euler_growth_per_step(h: f64) -> f64 {
+    (1.0 + h * h).sqrt()
+}
 
 /// One panel's drawing data, kept between frames: the full solve is reduced to a decimated
 /// polyline, its end point, the plot's half-width and the radius after each revolution.
@@ -165,7 +172,7 @@ impl SlideWidget for Spiral {
             style::h_slider(ui, &mut self.spec.h, H_RANGE);
             ui.label(format!(
                 "Euler grows r by √(1+h²) = {:.4} per step",
-                (1.0 + self.spec.h.powi(2)).sqrt()
+                euler_growth_per_step(self.spec.h)
             ));
         });
         style::problems_ui(ui, self.ode.load_error(), &self.methods.errors);
@@ -236,8 +243,12 @@ impl SlideWidget for Spiral {
                         style::text_color(ui, color),
                         egui::RichText::new(name.as_str()).strong(),
                     );
-                    let radii: Vec<String> =
-                        panel.revs.iter().take(4).map(|r| fmt_num(*r)).collect();
+                    let radii: Vec<String> = panel
+                        .revs
+                        .iter()
+                        .take(PRINTED_TURNS)
+                        .map(|r| fmt_num(*r))
+                        .collect();
                     ui.label(format!("r per turn: {}", radii.join(", ")));
                 });
             }
@@ -261,6 +272,25 @@ impl SlideWidget for Spiral {
         let vars = self.problem()?.vars;
         let series = self.paths().into_iter().map(|(k, p, _)| (k, p)).collect();
         Some(PlotData { vars, series })
+    }
+
+    /// What the panels print: `h`, Euler's `growth_per_step` √(1 + h²), and per method the
+    /// radius after each printed revolution, `radius_turn_1` … `radius_turn_4`.
+    fn readouts(&mut self) -> Vec<Readout> {
+        let mut v = vec![
+            Readout::new("h", "", self.spec.h),
+            Readout::new(
+                "growth_per_step",
+                "euler",
+                euler_growth_per_step(self.spec.h),
+            ),
+        ];
+        for (key, _, revs) in self.paths() {
+            for (k, r) in revs.iter().take(PRINTED_TURNS).enumerate() {
+                v.push(Readout::new(format!("radius_turn_{}", k + 1), &key, *r));
+            }
+        }
+        v
     }
 }
 

@@ -3,8 +3,8 @@
 
 use egui_plot::{Line, Points};
 
-use super::style;
-use super::{Param, SlideWidget};
+use super::style::{self, fmt_num};
+use super::{Param, Readout, SlideWidget};
 use crate::deck::widgets::{TaylorFn, TaylorSpec};
 
 impl TaylorFn {
@@ -69,6 +69,24 @@ pub fn order_color(n: usize) -> egui::Color32 {
     }
 }
 
+/// Orders drawn with a legend entry and a printed error.
+const PRINTED_ORDERS: usize = 6;
+
+/// Where the errors are printed: one unit right of the expansion point (left of it when that
+/// leaves the range), near enough that the orders are still told apart there.
+pub fn readout_point(spec: &TaylorSpec) -> f64 {
+    if spec.a + 1.0 <= spec.range.1 {
+        spec.a + 1.0
+    } else {
+        spec.a - 1.0
+    }
+}
+
+/// |Tₙ(t) − f(t)|: the error of the order-`n` truncation at `t`.
+pub fn truncation_error(spec: &TaylorSpec, n: usize, t: f64) -> f64 {
+    (truncation(spec.function, spec.a, n, t) - spec.function.eval(t)).abs()
+}
+
 pub struct Taylor {
     pub spec: TaylorSpec,
     initial: TaylorSpec,
@@ -108,10 +126,20 @@ impl SlideWidget for Taylor {
         let s = self.spec.clone();
         ui.horizontal_wrapped(|ui| {
             ui.label(egui::RichText::new(format!("{} ≈", s.function.name())).strong());
-            for n in 1..=s.order.min(6) {
+            for n in 1..=s.order.min(PRINTED_ORDERS) {
                 ui.colored_label(
                     style::text_color(ui, order_color(n)),
                     egui::RichText::new(format!("order {n}")).strong(),
+                );
+            }
+        });
+        let t_err = readout_point(&s);
+        ui.horizontal_wrapped(|ui| {
+            ui.label(format!("error at t = {}:", style::fmt_signed(t_err)));
+            for n in 1..=s.order.min(PRINTED_ORDERS) {
+                ui.colored_label(
+                    style::text_color(ui, order_color(n)),
+                    fmt_num(truncation_error(&s, n, t_err)),
                 );
             }
         });
@@ -161,6 +189,15 @@ impl SlideWidget for Taylor {
                             .color(order_color(n))
                             .width(w),
                     );
+                    // where the printed error is read off
+                    let at = truncation(s.function, s.a, n, t_err);
+                    if n <= PRINTED_ORDERS && at.is_finite() && (y0..=y1).contains(&at) {
+                        p.points(
+                            Points::new(format!("error {n}"), vec![[t_err, at]])
+                                .color(order_color(n))
+                                .radius(style::MARKER_RADIUS * u),
+                        );
+                    }
                 }
                 p.line(
                     Line::new(s.function.name(), f_pts)
@@ -187,6 +224,20 @@ impl SlideWidget for Taylor {
     }
 
     spec_plumbing!(Taylor);
+
+    /// The printed errors: `t` (where), and `error` per order (`order1` …).
+    fn readouts(&mut self) -> Vec<Readout> {
+        let t = readout_point(&self.spec);
+        let mut v = vec![Readout::new("t", "", t)];
+        for n in 1..=self.spec.order.min(PRINTED_ORDERS) {
+            v.push(Readout::new(
+                "error",
+                format!("order{n}"),
+                truncation_error(&self.spec, n, t),
+            ));
+        }
+        v
+    }
 }
 
 #[cfg(test)]

@@ -350,9 +350,10 @@ impl SlideWidget for WorkPrecision {
     /// `series,sweep,h_or_tol,f_evals,error`: every run, series by method key (`rk5` for the
     /// fixed-step fifth-order weights), `sweep` `h` or `tol`. Wall time is left out: it is the
     /// machine's, not the method's (and a modelled one in headless exports).
-    /// Each curve's best error, as the caption prints it.
+    /// Each curve's best error, as the caption prints it, from the whole study (not what
+    /// the background thread has sent so far: export asks before any frame is drawn).
     fn readouts(&mut self) -> Vec<super::Readout> {
-        self.results
+        self.compute()
             .iter()
             .map(|c| super::Readout::new("best_error", c.key.clone(), c.best_error()))
             .collect()

@@ -4,6 +4,7 @@
 use serde::{Deserialize, Serialize};
 
 pub mod convergence;
+pub mod energy;
 pub mod methods;
 pub mod neptune;
 pub mod ode;
@@ -19,6 +20,7 @@ pub mod taylor;
 pub mod work_precision;
 
 pub use convergence::ConvergenceSpec;
+pub use energy::EnergySpec;
 pub use methods::{MethodRef, ResolvedMethod};
 pub use neptune::NeptuneSpec;
 pub use ode::{LoadedOde, OdeError, OdeSource};
@@ -69,6 +71,9 @@ pub enum WidgetSpec {
     SimulationLoop(SimulationLoopSpec),
     /// 12. The live water scene (or a debug view) with its techniques and camera from the deck.
     Scene(SceneSpec),
+    /// 13. The energy of several methods' paths on one system, with their steps and f-evaluations
+    /// (the stiff spring: explicit methods explode, implicit Euler damps, the midpoint keeps it).
+    Energy(EnergySpec),
 }
 
 impl WidgetSpec {
@@ -87,6 +92,7 @@ impl WidgetSpec {
             WidgetSpec::ParallelTransport(_) => "parallel-transport",
             WidgetSpec::SimulationLoop(_) => "simulation-loop",
             WidgetSpec::Scene(_) => "scene",
+            WidgetSpec::Energy(_) => "energy",
         }
     }
 }
@@ -101,6 +107,7 @@ impl WidgetSpec {
             WidgetSpec::Neptune(s) => Some(&s.ode),
             WidgetSpec::Convergence(s) => Some(&s.ode),
             WidgetSpec::WorkPrecision(s) => Some(&s.ode),
+            WidgetSpec::Energy(s) => Some(&s.ode),
             WidgetSpec::Taylor(_)
             | WidgetSpec::Stability(_)
             | WidgetSpec::RigidBody(_)
@@ -119,6 +126,7 @@ impl WidgetSpec {
             WidgetSpec::Convergence(s) => &s.methods,
             WidgetSpec::WorkPrecision(s) => &s.methods,
             WidgetSpec::Stability(s) => &s.methods,
+            WidgetSpec::Energy(s) => &s.methods,
             WidgetSpec::StepConstruction(s) => std::slice::from_ref(&s.method),
             WidgetSpec::Taylor(_)
             | WidgetSpec::RigidBody(_)

@@ -15,7 +15,8 @@ pub struct StabilitySpec {
     #[serde(default)]
     pub tableaux: Vec<Tableau>,
     /// Visible window (re_min, re_max, im_min, im_max). Default: fitted to the regions (each
-    /// computed whole, `ode::stability_region`), with the origin.
+    /// computed whole, `ode::stability_region`; an implicit method's unbounded region by its
+    /// boundary curve), with the origin.
     #[serde(default)]
     pub view: Option<(f64, f64, f64, f64)>,
     /// Show z = hλ for this λ (e.g. the oscillator's ±i) as a marker moving with h.
@@ -23,6 +24,12 @@ pub struct StabilitySpec {
     pub lambda: Option<(f64, f64)>,
     #[serde(default = "default_h")]
     pub h: f64,
+    /// Default `Equal`: one unit is as long on both axes (circles stay round); the fitted
+    /// box's short side is padded to the plot's shape at most up to its long side, and the
+    /// plot leaves the rest of its slot blank. `Free`: the plot fills its slot showing exactly
+    /// the fitted box (or `view`).
+    #[serde(default)]
+    pub aspect: Option<super::Aspect>,
 }
 
 pub fn default_h() -> f64 {

@@ -67,8 +67,8 @@ impl Renderer {
         enc
     }
 
-    /// What draws the last encoded frame into an output pass: tone mapping (scaling the HDR
-    /// image up to the pass's viewport) or the debug view `settings` asks for. None before the
+    /// What draws the last encoded frame into an output pass: the tone-mapped image scaled up
+    /// to the pass's viewport, or the debug view `settings` asks for. None before the
     /// first frame.
     pub fn output(&self, settings: &RenderSettings) -> Option<OutputDraw> {
         let t = self.targets.as_ref()?;
@@ -79,8 +79,8 @@ impl Renderer {
                 bind_group: self.debug_group.clone(),
             },
             DebugView::None | DebugView::Normals => OutputDraw {
-                pipeline: p.tonemap.current.pipeline.clone(),
-                bind_group: t.tonemap.clone(),
+                pipeline: p.tonemap.current.upscale.clone(),
+                bind_group: t.upscale.clone(),
             },
         })
     }
@@ -156,7 +156,7 @@ impl Renderer {
                 pass.set_bind_group(1, &o.bind_group, &[]);
                 o.mesh.draw(&mut pass, 1);
             }
-            if !ranges.all.is_empty() {
+            if settings.fish_shadows && !ranges.all.is_empty() {
                 pass.set_pipeline(&p.fish.current.shadow);
                 pass.set_bind_group(0, &self.shadow_frame_group, &[]);
                 pass.set_vertex_buffer(1, res.fish_instances.slice(..));
@@ -231,7 +231,11 @@ impl Renderer {
                 }),
                 ..Default::default()
             });
-            pass.set_pipeline(p.water.current.pipeline.get(settings.shadow_filter));
+            pass.set_pipeline(
+                p.water
+                    .current
+                    .get(settings.shadow_filter, settings.water_normals),
+            );
             pass.set_bind_group(0, &self.frame_group, &[]);
             pass.set_bind_group(1, &t.water_inputs, &[]);
             pass.set_vertex_buffer(0, res.water_vertices.slice(..));
@@ -242,6 +246,18 @@ impl Renderer {
             };
             pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
             pass.draw_indexed(0..count, 0, 0..1);
+        }
+
+        // 6. tone mapping (and FXAA) at the render size; the output pass scales it up
+        {
+            let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("tonemap"),
+                color_attachments: &[cleared_color(&t.display_view, wgpu::Color::BLACK)],
+                ..Default::default()
+            });
+            pass.set_pipeline(p.tonemap.current.get(settings.fxaa));
+            pass.set_bind_group(0, &t.tonemap, &[]);
+            pass.draw(0..3, 0..1);
         }
         enc
     }
