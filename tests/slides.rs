@@ -279,17 +279,46 @@ fn text_boxes(output: &egui::FullOutput) -> Vec<(String, egui::Rect, egui::Rect)
     out
 }
 
+/// Every straight piece of every line a slide paints wider than a grid line (one point), in
+/// screen points: paths' segments (closed ones closed) and single segments.
+fn drawn_segments(output: &egui::FullOutput) -> Vec<[egui::Pos2; 2]> {
+    use egui::epaint::Shape;
+    const GRID_WIDTH: f32 = 1.05;
+    fn walk(shape: &Shape, out: &mut Vec<[egui::Pos2; 2]>) {
+        match shape {
+            Shape::Vec(v) => v.iter().for_each(|s| walk(s, out)),
+            Shape::LineSegment { points, stroke } if stroke.width > GRID_WIDTH => {
+                out.push(*points);
+            }
+            Shape::Path(p) if p.stroke.width > GRID_WIDTH => {
+                out.extend(p.points.windows(2).map(|w| [w[0], w[1]]));
+                if p.closed && p.points.len() > 2 {
+                    out.push([p.points[p.points.len() - 1], p.points[0]]);
+                }
+            }
+            _ => {}
+        }
+    }
+    let mut out = Vec::new();
+    for c in &output.shapes {
+        walk(&c.shape, &mut out);
+    }
+    out
+}
+
 /// The audience reads every word: on every bundled slide, at 1280×720 and 1920×1080, in both
 /// themes, no two texts overlap (labels, readouts, tick labels, legends, captions, footer),
 /// no text is cut by its clip rect (a readout past a column's edge, a line under the footer),
 /// and every widget stays inside the slot the slide gave it, and the slot inside the slide's
-/// content area (above the footer).
+/// content area (above the footer). In-plot labels (slopes, step labels, "off to Neptune")
+/// keep off every drawn line, not only off points: labels avoid segments.
 #[test]
 fn no_text_overlaps_and_every_widget_stays_in_its_slot() {
     work_precision::DETERMINISTIC.store(true, Ordering::Relaxed);
     let mut failures = Vec::new();
     let mut texts_checked = 0;
     let mut widgets_checked = 0;
+    let mut labels_checked = 0;
     for size in [egui::vec2(1280.0, 720.0), egui::vec2(1920.0, 1080.0)] {
         for theme in [lectern::deck::Theme::Dark, lectern::deck::Theme::Light] {
             let mut d = deck();
@@ -317,6 +346,22 @@ fn no_text_overlaps_and_every_widget_stays_in_its_slot() {
                         }
                     }
                 }
+                // in-plot labels never sit on a drawn line (curves, arrows, reference
+                // curves; grid lines, one point wide, are left out)
+                let segments = drawn_segments(h.output());
+                for label in lectern::widgets::labels::placed_labels(&h.ctx) {
+                    labels_checked += 1;
+                    // a leader ends on its label's edge: only the inside counts
+                    let inside = label.shrink(1.0);
+                    if let Some(s) = segments
+                        .iter()
+                        .find(|s| lectern::widgets::labels::segment_hits_rect(**s, inside))
+                    {
+                        failures.push(format!(
+                            "{at}: the label at {label:?} sits on the line {s:?}"
+                        ));
+                    }
+                }
                 for w in lectern::app::drawn_widgets(&h.ctx) {
                     if w.slide != n {
                         continue;
@@ -339,8 +384,8 @@ fn no_text_overlaps_and_every_widget_stays_in_its_slot() {
         }
     }
     assert!(
-        texts_checked > 1000 && widgets_checked >= 4 * 20,
-        "{texts_checked} {widgets_checked}"
+        texts_checked > 1000 && widgets_checked >= 4 * 20 && labels_checked >= 4 * 8,
+        "{texts_checked} {widgets_checked} {labels_checked}"
     );
     failures.dedup();
     assert!(

@@ -335,6 +335,89 @@ fn rigid_body_states() {
     r.unwrap();
 }
 
+/// Slide 16's boxes read as solids at a glance: in every panel of the slide's own widget (its
+/// spec from the bundled deck) the painted faces cover at least 30 % of the panel, and at least
+/// three faces show, each in its own shade (Lambert shading by a fixed light; flat, edge-on
+/// boxes covering ~15 % of their panels with one or two faces failed this). Read from the
+/// shapes the widget paints.
+#[test]
+fn rigid_body_boxes_fill_their_panels_and_show_three_shaded_faces() {
+    use egui::epaint::Shape;
+    let deck = parse_deck(include_str!("../slides/lecture.ron"), deck_path()).unwrap();
+    let spec = deck
+        .slides
+        .iter()
+        .flat_map(|s| s.widgets())
+        .find(|(_, w)| w.kind() == "rigid-body")
+        .map(|(_, w)| w.clone())
+        .expect("the lecture has a rigid-body slide");
+    let h = harness(spec.instantiate_in(Some(deck_path())));
+    fn walk(
+        shape: &Shape,
+        faces: &mut Vec<(Vec<egui::Pos2>, egui::Color32)>,
+        panels: &mut Vec<egui::Rect>,
+    ) {
+        match shape {
+            Shape::Vec(v) => v.iter().for_each(|s| walk(s, faces, panels)),
+            Shape::Path(p) if p.closed && p.fill != egui::Color32::TRANSPARENT => {
+                faces.push((p.points.clone(), p.fill));
+            }
+            Shape::Rect(r)
+                if r.fill == egui::Color32::TRANSPARENT
+                    && r.stroke.width > 0.0
+                    && r.rect.width() > 100.0
+                    && r.rect.height() > 100.0 =>
+            {
+                panels.push(r.rect);
+            }
+            _ => {}
+        }
+    }
+    let (mut faces, mut panels) = (Vec::new(), Vec::new());
+    for c in &h.output().shapes {
+        walk(&c.shape, &mut faces, &mut panels);
+    }
+    assert_eq!(panels.len(), 4, "one panel per method: {panels:?}");
+    let area = |pts: &[egui::Pos2]| {
+        let n = pts.len();
+        0.5 * (0..n)
+            .map(|i| pts[i].x * pts[(i + 1) % n].y - pts[(i + 1) % n].x * pts[i].y)
+            .sum::<f32>()
+            .abs()
+    };
+    for panel in &panels {
+        let mine: Vec<_> = faces
+            .iter()
+            .filter(|(pts, _)| {
+                let c =
+                    pts.iter().fold(egui::Vec2::ZERO, |a, p| a + p.to_vec2()) / pts.len() as f32;
+                panel.contains(c.to_pos2())
+            })
+            .collect();
+        let covered: f32 = mine.iter().map(|(pts, _)| area(pts)).sum();
+        let share = covered / panel.area();
+        let mut shades: Vec<egui::Color32> = mine.iter().map(|(_, c)| *c).collect();
+        shades.sort_by_key(|c| c.to_array());
+        shades.dedup();
+        assert!(
+            share >= 0.30,
+            "panel {panel:?}: the box covers {:.0} %",
+            100.0 * share
+        );
+        assert!(
+            mine.len() >= 3 && shades.len() == mine.len(),
+            "panel {panel:?}: {} faces in {} shades",
+            mine.len(),
+            shades.len()
+        );
+        println!(
+            "panel {panel:?}: {:.1} % covered, {} faces",
+            100.0 * share,
+            mine.len()
+        );
+    }
+}
+
 /// Proves the snapshots bite: the committed slope-field picture for h = 0.5 must not match a
 /// rendering with h = 0.45, with the same tolerance the snapshot tests use; and, as a control,
 /// the same h must match (so the comparison is not simply always failing).
@@ -749,7 +832,7 @@ fn one_colour_per_method_across_the_deck_distinct_on_every_slide() {
                 for v in [Vision::Normal, Vision::Protanopia, Vision::Deuteranopia] {
                     let d = colors::delta_e(*ca, *cb, v);
                     assert!(
-                        d >= colors::MIN_DELTA_E_ON_A_SLIDE,
+                        d >= colors::min_delta_e_on_a_slide(v),
                         "slide {}: {a} and {b} are ΔE {d:.1} apart for {v:?}",
                         i + 1
                     );

@@ -321,6 +321,7 @@ impl SlideWidget for Convergence {
         };
         let mut labels = Vec::new();
         let mut ends = Vec::new();
+        let mut lines = Vec::new();
         let shown = plot.show(ui, |p| {
             for (_, name, color, pts, slope, order) in data {
                 let color = *color;
@@ -339,6 +340,7 @@ impl SlideWidget for Convergence {
                         .color(color)
                         .radius(style::MARKER_RADIUS * u),
                 );
+                lines.push(v.clone());
                 // every computed point is an obstacle: a label never covers one
                 ends.extend(v.iter().map(|e| PlotPoint::new(e[0], e[1])));
                 // label at the smallest h of the fit (round-off-dominated points do not
@@ -367,7 +369,7 @@ impl SlideWidget for Convergence {
             .iter()
             .map(|&e| labels::marker_rect(t, e, style::MARKER_RADIUS * u))
             .collect();
-        labels::draw(ui, t, &labels, &obstacles);
+        labels::draw(ui, t, &labels, &obstacles, &lines);
     }
 
     fn params(&mut self) -> Vec<Param<'_>> {

@@ -320,7 +320,10 @@ impl SlideWidget for Energy {
                     }
                 }
             });
-        exit_labels_ui(ui, &shown.transform, &labels, &obstacles_at, u);
+        // labels keep off every drawn line: E₀ and each method's ratio
+        let mut drawn = vec![vec![[t0, 1.0], [t_end, 1.0]]];
+        drawn.extend(lines.iter().map(|(_, pts, _)| pts.clone()));
+        exit_labels_ui(ui, &shown.transform, &labels, &obstacles_at, &drawn, u);
     }
 
     fn params(&mut self) -> Vec<Param<'_>> {

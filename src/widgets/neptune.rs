@@ -97,19 +97,20 @@ pub fn exit_marker(
 /// The exit markers' radius, in slide units.
 const EXIT_MARKER_RADIUS: f32 = 2.0 * style::KEY_MARKER_RADIUS;
 
-/// Places the exit markers' labels clear of the markers at `exits`.
+/// Places the exit markers' labels clear of the markers at `exits` and of the drawn `lines`.
 pub fn exit_labels_ui(
     ui: &egui::Ui,
     transform: &egui_plot::PlotTransform,
     exit_labels: &[labels::PlotLabel],
     exits: &[PlotPoint],
+    lines: &[Vec<[f64; 2]>],
     u: f32,
 ) {
     let obstacles: Vec<egui::Rect> = exits
         .iter()
         .map(|&e| labels::marker_rect(transform, e, EXIT_MARKER_RADIUS * u))
         .collect();
-    labels::draw(ui, transform, exit_labels, &obstacles);
+    labels::draw(ui, transform, exit_labels, &obstacles, lines);
 }
 
 pub struct Neptune {
@@ -275,6 +276,8 @@ impl SlideWidget for Neptune {
         style::y_name_ui(ui, &y_name);
         let mut labels = Vec::new();
         let mut obstacles_at = Vec::new();
+        let mut lines = vec![exact.clone()];
+        lines.extend(paths.iter().map(|(_, _, (pts, _))| pts.clone()));
         let shown = style::plot(ui, "neptune", "t")
             .default_x_bounds(t0, t_end)
             .default_y_bounds(-clamp * 1.1, clamp * 1.1)
@@ -307,7 +310,7 @@ impl SlideWidget for Neptune {
                     }
                 }
             });
-        exit_labels_ui(ui, &shown.transform, &labels, &obstacles_at, u);
+        exit_labels_ui(ui, &shown.transform, &labels, &obstacles_at, &lines, u);
     }
 
     fn params(&mut self) -> Vec<Param<'_>> {

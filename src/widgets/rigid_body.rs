@@ -184,18 +184,42 @@ impl RigidBodyView {
     }
 }
 
-/// Paints the box (sides `dims`) rotated by R, in an orthographic view from a fixed oblique
-/// camera, faces sorted back to front and shaded by their normal. No panel behind it: the
-/// view sits on the slide's own background, light or dark.
-fn paint_box(
-    painter: &egui::Painter,
+/// The camera the boxes are seen from: looking down 27° onto the world, turned 35° about the
+/// vertical, so a box in most orientations shows three faces (top and two sides) at once.
+fn view_from_world() -> DMat3 {
+    DMat3::from_rotation_x(27f64.to_radians()) * DMat3::from_rotation_y(-35f64.to_radians())
+}
+
+/// The fixed light, in view space (z towards the viewer): over the viewer's left shoulder, so
+/// the three faces a box shows get three different shades and none goes dark.
+fn light_in_view() -> DVec3 {
+    DVec3::new(-0.3, 0.4, 0.87).normalize()
+}
+
+/// One visible face of a drawn box, in screen points, back to front.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BoxFace {
+    pub corners: [egui::Pos2; 4],
+    pub color: egui::Color32,
+    /// Lambert term max(0, n·l) of the face (before the ambient floor).
+    pub lambert: f64,
+}
+
+/// The faces of a box of sides `dims` turned by `world_from_body` as the camera sees them in
+/// `rect`: orthographic, back faces culled, the rest sorted back to front (painter's order)
+/// and shaded by Lambert's cosine law with a fixed light, over an ambient floor. The box is
+/// scaled so its bounding sphere spans the rect's smaller side: whatever way it turns,
+/// it stays inside, at one size (no zoom pumping while it tumbles).
+pub fn box_faces(
     rect: egui::Rect,
-    r: DMat3,
+    world_from_body: DMat3,
     dims: DVec3,
     accent: egui::Color32,
-) {
-    let cam = DMat3::from_rotation_x(-0.45) * DMat3::from_rotation_y(0.6);
-    let scale = rect.width().min(rect.height()) as f64 * 0.33 / dims.max_element().max(1e-9);
+) -> Vec<BoxFace> {
+    const AMBIENT: f64 = 0.42;
+    let view_from_body = view_from_world() * world_from_body;
+    let radius = 0.5 * dims.length().max(1e-9);
+    let scale = 0.5 * rect.width().min(rect.height()) as f64 / radius;
     let center = rect.center();
     let corner = |i: usize| {
         DVec3::new(
@@ -212,53 +236,65 @@ fn paint_box(
         ([0, 1, 3, 2], DVec3::NEG_Z),
         ([4, 6, 7, 5], DVec3::Z),
     ];
-    let view_from_body = cam * r;
-    let mut drawn: Vec<(f64, Vec<egui::Pos2>, egui::Color32)> = faces
+    let light = light_in_view();
+    let mut drawn: Vec<(f64, BoxFace)> = faces
         .iter()
-        .filter_map(|(idx, n)| {
-            let n_view = view_from_body * *n;
-            if n_view.z < 0.02 {
-                return None; // facing away or edge-on (camera looks down −z)
+        .filter_map(|(idx, normal_in_body)| {
+            let normal_in_view = view_from_body * *normal_in_body;
+            if normal_in_view.z <= 1e-3 {
+                return None; // a back face (the camera looks down −z), or edge-on
             }
-            let pts: Vec<egui::Pos2> = idx
-                .iter()
-                .map(|&i| {
-                    let p = view_from_body * corner(i);
-                    egui::pos2(
-                        center.x + (p.x * scale) as f32,
-                        center.y - (p.y * scale) as f32,
-                    )
-                })
-                .collect();
-            let depth = idx
-                .iter()
-                .map(|&i| (view_from_body * corner(i)).z)
-                .sum::<f64>();
+            let corners = idx.map(|i| {
+                let p = view_from_body * corner(i);
+                egui::pos2(
+                    center.x + (p.x * scale) as f32,
+                    center.y - (p.y * scale) as f32,
+                )
+            });
+            let depth: f64 = idx.iter().map(|&i| (view_from_body * corner(i)).z).sum();
             // the ±y faces (the intermediate axis) carry the method's colour, so the flip shows
-            let base = if n.y > 0.0 {
+            let base = if normal_in_body.y > 0.0 {
                 accent
-            } else if n.y < 0.0 {
-                accent.lerp_to_gamma(egui::Color32::WHITE, 0.6)
+            } else if normal_in_body.y < 0.0 {
+                accent.lerp_to_gamma(egui::Color32::WHITE, 0.55)
             } else {
-                egui::Color32::from_gray(200)
+                egui::Color32::from_gray(225)
             };
-            let light =
-                (0.45 + 0.55 * n_view.dot(DVec3::new(0.3, 0.5, 0.8).normalize()).max(0.0)) as f32;
-            let c = egui::Color32::from_rgb(
-                (base.r() as f32 * light) as u8,
-                (base.g() as f32 * light) as u8,
-                (base.b() as f32 * light) as u8,
-            );
-            Some((depth, pts, c))
+            let lambert = normal_in_view.dot(light).max(0.0);
+            let k = (AMBIENT + (1.0 - AMBIENT) * lambert) as f32;
+            let shade = |c: u8| (f32::from(c) * k).round().min(255.0) as u8;
+            let color = egui::Color32::from_rgb(shade(base.r()), shade(base.g()), shade(base.b()));
+            Some((
+                depth,
+                BoxFace {
+                    corners,
+                    color,
+                    lambert,
+                },
+            ))
         })
         .collect();
     drawn.sort_by(|a, b| a.0.total_cmp(&b.0));
-    // Fill, then outline with plain segments: a stroked sliver polygon grows miter spikes.
-    let edge = egui::Stroke::new(1.5, egui::Color32::from_gray(40));
-    for (_, pts, c) in drawn {
+    drawn.into_iter().map(|(_, f)| f).collect()
+}
+
+/// Paints [`box_faces`]: filled faces, then their edges outlined (plain segments: a stroked
+/// sliver polygon grows miter spikes). No panel fill behind: the view sits on the slide's own
+/// background, light or dark.
+fn paint_box(
+    painter: &egui::Painter,
+    rect: egui::Rect,
+    world_from_body: DMat3,
+    dims: DVec3,
+    accent: egui::Color32,
+    unit: f32,
+) {
+    let edge = egui::Stroke::new(2.0 * unit, egui::Color32::from_gray(35));
+    for face in box_faces(rect, world_from_body, dims, accent) {
+        let pts = face.corners.to_vec();
         painter.add(egui::Shape::convex_polygon(
             pts.clone(),
-            c,
+            face.color,
             egui::Stroke::NONE,
         ));
         for k in 0..pts.len() {
@@ -327,6 +363,7 @@ impl SlideWidget for RigidBodyView {
                         DMat3::from_quat(run.body.state.q),
                         dims,
                         color,
+                        u,
                     );
                     ui.colored_label(
                         style::text_color(ui, color),

@@ -296,6 +296,14 @@ impl SlideWidget for StepConstruction {
         style::y_name_ui(ui, "x");
         let mut labels = Vec::new();
         let mut points_at = vec![PlotPoint::new(t0, x0)];
+        // labels keep off every drawn line: the exact curve and each shown arrow or slope
+        let mut lines = vec![exact.clone()];
+        lines.extend(
+            arrows
+                .iter()
+                .filter(|a| a.stage <= stage)
+                .map(|a| vec![a.from, a.to]),
+        );
         let shown = style::plot(ui, "step-construction", "t")
             .width(ui.available_width())
             .include_x(t0 - 0.1 * h)
@@ -370,7 +378,7 @@ impl SlideWidget for StepConstruction {
             .iter()
             .map(|&e| labels::marker_rect(t, e, style::KEY_MARKER_RADIUS * u))
             .collect();
-        labels::draw(ui, t, &labels, &obstacles);
+        labels::draw(ui, t, &labels, &obstacles, &lines);
     }
 
     fn params(&mut self) -> Vec<Param<'_>> {

@@ -16,10 +16,10 @@ pub const RK4: Color32 = colors::BLUISH_GREEN.color;
 pub const HEUN: Color32 = colors::WINE.color;
 pub const RK4_TYPO: Color32 = colors::PINK.color;
 /// Dormand–Prince's fifth-order formula at a fixed step ("RK5").
-pub const RK5: Color32 = colors::TEAL.color;
+pub const RK5: Color32 = colors::ORCHID.color;
 pub const FIELD: Color32 = Color32::from_rgb(150, 150, 160);
 pub const DIVERGED: Color32 = Color32::from_rgb(200, 0, 0);
-pub const SYMPLECTIC_EULER: Color32 = colors::STEEL_BLUE.color;
+pub const SYMPLECTIC_EULER: Color32 = colors::RASPBERRY.color;
 
 /// Colours of deck tableaux other than the notes' RK4 typo (which always gets [`RK4_TYPO`]),
 /// in order.

@@ -261,8 +261,17 @@ impl SlideWidget for WorkPrecision {
             }
         });
         let u = style::unit(ui);
-        style::y_name_ui(ui, "error");
         let half = (ui.available_width() - ui.spacing().item_spacing.x) / 2.0;
+        // each panel its own y name, above its own left edge (the right panel's used to be
+        // folded into its x label)
+        ui.horizontal_top(|ui| {
+            for name in ["error", "time ÷ fastest"] {
+                ui.vertical(|ui| {
+                    ui.set_width(half);
+                    style::y_name_ui(ui, name);
+                });
+            }
+        });
         let height = ui.available_height();
         let results = &self.results;
         let sweeps: Vec<&[Sample]> = results.iter().map(|c| c.samples.as_slice()).collect();
@@ -305,7 +314,7 @@ impl SlideWidget for WorkPrecision {
                     });
             });
             ui.allocate_ui(egui::vec2(half, height), |ui| {
-                style::plot(ui, "wp-relative", "error asked for (time ÷ fastest)")
+                style::plot(ui, "wp-relative", "error asked for")
                     .width(half)
                     .height(height)
                     .x_grid_spacer(egui_plot::uniform_grid_spacer(|_| [2.0, 2.0, 2.0]))
