@@ -56,7 +56,7 @@ pub fn scene_file(
 ) -> Result<SceneFile, String> {
     let is_default = written == crate::deck::widgets::scene::default_scene();
     match resolved {
-        Ok(path) if path.is_file() || !is_default => Ok(SceneFile {
+        Ok(path) if crate::project_files::is_file(&path) || !is_default => Ok(SceneFile {
             path,
             bundled: false,
         }),

@@ -21,8 +21,9 @@ fn limits() -> image::Limits {
 /// Decodes the picture at `path` (already resolved through [`crate::paths`]) into RGBA8.
 pub fn decode(path: &Path) -> Result<image::RgbaImage, String> {
     let shown = path.display();
-    let mut reader = image::ImageReader::open(path)
-        .map_err(|e| format!("cannot open image {shown}: {e}"))?
+    let bytes =
+        crate::project_files::read(path).map_err(|e| format!("cannot open image {shown}: {e}"))?;
+    let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes))
         .with_guessed_format()
         .map_err(|e| format!("cannot read image {shown}: {e}"))?;
     reader.limits(limits());

@@ -9,6 +9,7 @@ pub mod bundled;
 pub mod diag;
 pub mod image_file;
 pub mod paths;
+pub mod project_files;
 pub mod ron_tree;
 
 // numerics and simulation: no GPU or UI types below this line
@@ -28,4 +29,6 @@ pub mod math;
 pub mod render;
 pub mod widgets;
 
+// the command line: native only (it typesets, spawns workers, writes files)
+#[cfg(not(target_arch = "wasm32"))]
 pub mod cli;

@@ -162,8 +162,8 @@ pub fn resolve(base_dir: &Path, root: &Path, written: &str) -> Result<PathBuf, P
 
 /// `p` with `.` removed and `x/..` folded, without touching the disk; relative paths are taken
 /// against the current directory so that `slides` and `./slides/..` compare equal to their
-/// absolute forms.
-fn lexical(p: &Path) -> PathBuf {
+/// absolute forms (in a browser, which has none, they stay relative).
+pub fn lexical(p: &Path) -> PathBuf {
     let abs = if p.is_absolute() {
         p.to_path_buf()
     } else {

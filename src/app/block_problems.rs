@@ -31,7 +31,7 @@ pub(crate) fn located_problem(
     if let Some(line) = ctx.data(|d| d.get_temp::<String>(id)) {
         return line;
     }
-    let diag = std::fs::read_to_string(file)
+    let diag = crate::project_files::read_to_string(file)
         .ok()
         .and_then(|text| crate::math::deck::position(&text, ron_path, written, col))
         .map_or_else(

@@ -122,7 +122,7 @@ pub(crate) fn math_source_height(src: &str, look: &Look) -> f32 {
 /// The height a formula is likely to take before it is typeset (so the blocks below it move
 /// little when it arrives).
 pub(crate) fn placeholder_height(src: &str, look: &Look) -> f32 {
-    look.scaled(size::MATH * crate::math::typeset::estimated_height_em(src))
+    look.scaled(size::MATH * crate::math::estimated_height_em(src))
 }
 
 /// Display maths, typeset by Typst (`crate::math`) and centred. A formula still being typeset

@@ -199,7 +199,7 @@ impl LecternApp {
         self.frames.tick(
             ctx.cumulative_frame_nr(),
             self.mode,
-            std::time::Instant::now(),
+            web_time::Instant::now(),
         );
         self.pump_reload();
         self.handle_keys(&ctx);

@@ -137,23 +137,31 @@ pub fn install_fonts(ctx: &egui::Context) {
     if fonts_installed(ctx) {
         return;
     }
-    // typst-assets 0.15 lists its fonts in a fixed order (see its `fonts()`); we pick by index
-    // and check the count so a reordering upstream fails loudly in tests, not silently.
-    let all: Vec<&'static [u8]> = typst_assets::fonts().collect();
-    if all.len() < 17 {
-        tracing::warn!("typst-assets fonts missing; slides use egui's default fonts");
+    // by name, from typst-assets (or, in the web player, from its bundle)
+    let faces: std::collections::HashMap<String, &'static [u8]> =
+        crate::math::slide_fonts().into_iter().collect();
+    let face = |name: &str| faces.get(name).copied();
+    let (Some(serif), Some(serif_italic), Some(serif_bold), Some(math), Some(newcm), Some(mono)) = (
+        face("LibertinusSerif-Regular"),
+        face("LibertinusSerif-Italic"),
+        face("LibertinusSerif-Semibold"),
+        face("NewCMMath-Book"),
+        face("NewCM10-Regular"),
+        face("DejaVuSansMono"),
+    ) else {
+        tracing::warn!("slide fonts missing; slides use egui's default fonts");
         return;
-    }
+    };
     let mut defs = egui::FontDefinitions::default();
     // After our face: New Computer Modern (wide coverage of maths symbols, super- and
     // subscripts), then egui's own fonts (emoji, icons).
     defs.font_data.insert(
         "NewCM10-Regular".into(),
-        egui::FontData::from_static(all[9]).into(),
+        egui::FontData::from_static(newcm).into(),
     );
     defs.font_data.insert(
         "NewCMMath-Book".into(),
-        egui::FontData::from_static(all[7]).into(),
+        egui::FontData::from_static(math).into(),
     );
     let mut fallbacks = vec!["NewCM10-Regular".to_owned(), "NewCMMath-Book".to_owned()];
     fallbacks.extend(
@@ -177,10 +185,10 @@ pub fn install_fonts(ctx: &egui::Context) {
         chain.extend(fallbacks.iter().cloned());
         defs.families.insert(FontFamily::Name(family.into()), chain);
     };
-    add("LibertinusSerif-Regular", all[0], SERIF);
-    add("LibertinusSerif-Italic", all[2], SERIF_ITALIC);
-    add("LibertinusSerif-Semibold", all[4], SERIF_BOLD);
-    add("DejaVuSansMono", all[16], MONO);
+    add("LibertinusSerif-Regular", serif, SERIF);
+    add("LibertinusSerif-Italic", serif_italic, SERIF_ITALIC);
+    add("LibertinusSerif-Semibold", serif_bold, SERIF_BOLD);
+    add("DejaVuSansMono", mono, MONO);
     // Last resort in every family: the maths fonts' full coverage (superscript minus, arrows,
     // box drawing), so no label anywhere falls through to a missing glyph.
     crate::math::add_fallback_fonts(&mut defs);

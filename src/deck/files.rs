@@ -98,7 +98,9 @@ pub fn check_deck_files(file: &Path, text: &str, deck: &Deck) -> Vec<Diagnostic>
         };
         let problem = match resolved {
             Err(e) => Some(e),
-            Ok(path) if !path.is_file() => Some(format!("`{}`: no such file", r.written)),
+            Ok(path) if !crate::project_files::is_file(&path) => {
+                Some(format!("`{}`: no such file", r.written))
+            }
             Ok(path) => match r.kind {
                 FileKind::Image => crate::image_file::decode(&path).err(),
                 FileKind::Scene => crate::scene::load_scene(&path).err().map(|d| d.to_string()),

@@ -27,7 +27,7 @@ impl InkFile {
     }
 
     pub fn open(path: PathBuf) -> Self {
-        let exists = path.exists();
+        let exists = crate::project_files::is_file(&path);
         let live = LiveFile::open(path, Ink::parse);
         let ink = live.value().cloned().unwrap_or_default();
         let problem = if exists { live.error().cloned() } else { None };
@@ -69,7 +69,7 @@ impl InkFile {
                 true
             }
             // Deleted on disk: the ink on screen stays, and comes back with the next stroke.
-            Reloaded::Failed(_) if !self.live.path().exists() => false,
+            Reloaded::Failed(_) if !crate::project_files::is_file(self.live.path()) => false,
             Reloaded::Failed(d) => {
                 tracing::warn!("ink file ignored: {d}");
                 self.problem = Some(d);

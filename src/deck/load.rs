@@ -46,7 +46,7 @@ pub fn parse_deck(text: &str, file: &Path) -> Result<Deck, Diagnostic> {
 
 /// Loads a deck file; image paths in it are resolved against its folder.
 pub fn load_deck(path: &Path) -> Result<Deck, Diagnostic> {
-    let text = std::fs::read_to_string(path)
+    let text = crate::project_files::read_to_string(path)
         .map_err(|e| Diagnostic::whole_file(path, format!("cannot read: {e}")))?;
     parse_deck_file(&text, path)
 }

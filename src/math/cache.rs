@@ -9,9 +9,9 @@
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 
+use super::formula::Request;
+use super::formula::{MathError, MathStyle, MathSyntax, RenderedFormula};
 use super::pool::{Job, Notify, Poll, pool};
-use super::typeset::{MathError, MathStyle, MathSyntax, RenderedFormula};
-use super::wire::Request;
 
 #[derive(Debug, Clone, PartialEq, Eq, Hash)]
 struct Key {

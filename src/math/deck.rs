@@ -4,9 +4,9 @@
 
 use std::path::Path;
 
+use super::formula::Request;
+use super::formula::{MathError, MathStyle, MathSyntax};
 use super::pool::pool;
-use super::typeset::{MathError, MathStyle, MathSyntax};
-use super::wire::Request;
 use crate::deck::markup::inline_formulas;
 use crate::deck::{Block, Deck};
 use crate::diag::Diagnostic;

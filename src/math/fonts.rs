@@ -3,17 +3,20 @@
 //! so labels and formulas agree and nothing depends on the system's fonts.
 
 use egui::{FontDefinitions, FontFamily};
-use typst::text::{FontInfo, FontWeight};
 
 /// Family names (as the font files name themselves) installed as fallbacks, in order.
+#[cfg(not(target_arch = "wasm32"))]
 const FALLBACKS: [&str; 3] = [
     "DejaVu Sans Mono",
     "New Computer Modern Math",
     "Libertinus Serif",
 ];
 
-/// The fallback fonts as (egui font name, bytes), found by family among the embedded fonts.
-fn fallback_fonts() -> Vec<(String, &'static [u8])> {
+/// The fallback fonts as (egui font name, bytes), found by family among the embedded fonts
+/// (`lectern export --web` puts these bytes in the bundle for the player).
+#[cfg(not(target_arch = "wasm32"))]
+pub fn fallback_fonts() -> Vec<(String, &'static [u8])> {
+    use typst::text::{FontInfo, FontWeight};
     FALLBACKS
         .iter()
         .filter_map(|want| {
@@ -27,6 +30,66 @@ fn fallback_fonts() -> Vec<(String, &'static [u8])> {
             Some((format!("lectern-{want}"), data))
         })
         .collect()
+}
+
+/// The faces the slides set text in, by the name egui knows them, with their place in
+/// typst-assets 0.15's list (a fixed order: the count is checked so a reordering upstream fails
+/// loudly in tests, not silently).
+const SLIDE_FACES: [(&str, usize); 6] = [
+    ("LibertinusSerif-Regular", 0),
+    ("LibertinusSerif-Italic", 2),
+    ("LibertinusSerif-Semibold", 4),
+    ("NewCMMath-Book", 7),
+    ("NewCM10-Regular", 9),
+    ("DejaVuSansMono", 16),
+];
+
+/// The slide faces as (egui font name, bytes), all of [`SLIDE_FACES`] or none (then slides use
+/// egui's default fonts).
+#[cfg(not(target_arch = "wasm32"))]
+pub fn slide_fonts() -> Vec<(String, &'static [u8])> {
+    let all: Vec<&'static [u8]> = typst_assets::fonts().collect();
+    if all.len() < 17 {
+        return Vec::new();
+    }
+    SLIDE_FACES
+        .iter()
+        .map(|(name, i)| (name.to_string(), all[*i]))
+        .collect()
+}
+
+#[cfg(target_arch = "wasm32")]
+static BUNDLED: std::sync::OnceLock<Vec<(String, &'static [u8])>> = std::sync::OnceLock::new();
+
+/// The web player's slide faces: those of the bundle (see [`set_bundled_fonts`]).
+#[cfg(target_arch = "wasm32")]
+pub fn slide_fonts() -> Vec<(String, &'static [u8])> {
+    let have = BUNDLED.get().cloned().unwrap_or_default();
+    let faces: Vec<_> = SLIDE_FACES
+        .iter()
+        .filter_map(|(name, _)| have.iter().find(|(n, _)| n == name).cloned())
+        .collect();
+    if faces.len() == SLIDE_FACES.len() {
+        faces
+    } else {
+        Vec::new()
+    }
+}
+
+/// The web player's fallback fonts: those of the bundle (see [`set_bundled_fonts`]).
+#[cfg(target_arch = "wasm32")]
+pub fn fallback_fonts() -> Vec<(String, &'static [u8])> {
+    let have = BUNDLED.get().cloned().unwrap_or_default();
+    have.into_iter()
+        .filter(|(n, _)| n.starts_with("lectern-"))
+        .collect()
+}
+
+/// The web player, at start, before drawing: the fonts its bundle carries (those of
+/// [`slide_fonts`] and [`fallback_fonts`] at export), as (egui font name, bytes). Once.
+#[cfg(target_arch = "wasm32")]
+pub fn set_bundled_fonts(fonts: Vec<(String, &'static [u8])>) {
+    let _ = BUNDLED.set(fonts);
 }
 
 /// Appends the fallback fonts to the end of every family in `defs` (proportional, monospace

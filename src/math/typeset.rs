@@ -14,52 +14,7 @@ use typst::utils::LazyHash;
 use typst::{Library, LibraryExt, World, WorldExt};
 use typst_layout::PagedDocument;
 
-/// Which syntax a formula is written in.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum MathSyntax {
-    /// Typst maths, e.g. `dot(x) = f(x, t)`.
-    Typst,
-    /// LaTeX maths, e.g. `\dot{x} = f(x, t)`, converted to Typst by `mitex`.
-    Latex,
-}
-
-/// How a formula sits: on its own line (a `Math` block) or inside a line of text (`$…$` in a
-/// paragraph), where it must stand on the text's baseline.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-pub enum MathStyle {
-    #[default]
-    Display,
-    Inline,
-}
-
-/// A rendered formula: premultiplied RGBA, row-major, `width × height` pixels, with its
-/// baseline `baseline` pixels below the top edge (where a line of text must sit).
-#[derive(Debug, Clone, PartialEq)]
-pub struct RenderedFormula {
-    pub width: u32,
-    pub height: u32,
-    pub baseline: u32,
-    pub rgba_premultiplied: Vec<u8>,
-}
-
-/// Why a formula did not render. `col` is a 1-based column (in characters) into the formula as
-/// the lecturer wrote it, when Typst could point at the fault.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct MathError {
-    pub message: String,
-    pub col: Option<usize>,
-}
-
-impl std::fmt::Display for MathError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self.col {
-            Some(c) => write!(f, "column {c}: {}", self.message),
-            None => write!(f, "{}", self.message),
-        }
-    }
-}
-
-impl std::error::Error for MathError {}
+pub use super::formula::{MathError, MathStyle, MathSyntax, RenderedFormula};
 
 /// The font size formulas are laid out at; the raster scale turns it into the pixels asked for.
 const LAYOUT_PT: f64 = 10.0;
@@ -162,9 +117,7 @@ pub fn render_formula(
     render_math(src, syntax, MathStyle::Display, size_px, rgba)
 }
 
-/// The space around an inline formula's ink, above and below (so antialiased edges are not
-/// cut), in ems: a line of text lays the formula out without it (see `app::inline_text`).
-pub const INLINE_MARGIN_Y_EM: f32 = 0.15;
+pub use super::formula::INLINE_MARGIN_Y_EM;
 const INLINE_MARGIN: &str = "(x: 0.04em, y: 0.15em)";
 
 /// A zero-width box holding an invisible letter, typeset just before the formula: its text
@@ -277,50 +230,7 @@ fn baseline_pt(
     None
 }
 
-/// About how tall `src` will be once typeset, in ems, without typesetting it: for the
-/// placeholder a slide draws while the formula is on its way, so the blocks below move little
-/// when it arrives. Calibrated on the bundled deck (a line 1.3–1.6 em, a fraction 2.4–2.7, a
-/// column vector or matrix ~1.2–1.35 em per row).
-pub fn estimated_height_em(src: &str) -> f32 {
-    // the most rows in any vec(..) (entries split by commas) or mat(..) (rows split by `;`)
-    let mut rows = 1usize;
-    for (open, sep) in [("vec(", b','), ("mat(", b';'), ("cases(", b',')] {
-        for (start, _) in src.match_indices(open) {
-            let mut depth = 0i32;
-            let mut n = 1;
-            for &b in &src.as_bytes()[start + open.len() - 1..] {
-                match b {
-                    b'(' | b'[' | b'{' => depth += 1,
-                    b')' | b']' | b'}' => {
-                        depth -= 1;
-                        if depth == 0 {
-                            break;
-                        }
-                    }
-                    _ if b == sep && depth == 1 => n += 1,
-                    _ => {}
-                }
-            }
-            rows = rows.max(n);
-        }
-    }
-    let rows = rows.max(src.matches("\\\\").count() + 1);
-    if rows > 1 {
-        return 1.25 * rows as f32 + 0.4;
-    }
-    // `a/b` is a fraction, `\/` a plain slash
-    let fraction = src
-        .char_indices()
-        .any(|(i, c)| c == '/' && !src[..i].ends_with('\\'))
-        || src.contains("frac");
-    if fraction {
-        2.6
-    } else if src.contains('^') || src.contains('_') {
-        1.5
-    } else {
-        1.35
-    }
-}
+pub use super::formula::estimated_height_em;
 
 fn first_error(
     world: &FormulaWorld,

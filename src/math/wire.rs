@@ -19,15 +19,7 @@ pub const VERSION: &str = "lectern-typeset-2";
 /// Largest frame accepted, either way: a 64 MB formula source or picture is not a formula.
 const MAX_FRAME: usize = 64 << 20;
 
-/// One formula to typeset.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Request {
-    pub src: String,
-    pub syntax: MathSyntax,
-    pub style: MathStyle,
-    pub size_px: f32,
-    pub rgba: [u8; 4],
-}
+pub use super::formula::Request;
 
 impl Request {
     /// Typesets it here, in this process (the worker's job, or the pool's in-process fallback).

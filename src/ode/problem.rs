@@ -370,7 +370,7 @@ impl Derivatives {
 
 /// A problem file's definition, or the file's own diagnostic (unreadable, not RON).
 pub fn read_def(path: &Path) -> Result<(String, ProblemDef), Diagnostic> {
-    let text = std::fs::read_to_string(path)
+    let text = crate::project_files::read_to_string(path)
         .map_err(|e| Diagnostic::whole_file(path, format!("cannot read problem: {e}")))?;
     let def = parse_def(&text, path)?;
     Ok((text, def))
@@ -428,7 +428,7 @@ pub fn diagnostic_at(text: &str, base: &str, path: &Path, e: &DefError) -> Diagn
 impl Problem {
     pub fn load(path: impl AsRef<Path>) -> Result<Self, Diagnostic> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path)
+        let text = crate::project_files::read_to_string(path)
             .map_err(|e| Diagnostic::whole_file(path, format!("cannot read problem: {e}")))?;
         Self::parse(&text, path)
     }

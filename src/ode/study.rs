@@ -2,7 +2,7 @@
 //! them on a background thread, `lectern bench` can print them and the benchmarks can time
 //! them, all by one timing policy ([`Timing`]) over one list of tolerances ([`tolerances`]).
 
-use std::time::Instant;
+use web_time::Instant;
 
 use super::adaptive::{Adaptive, solve_embedded};
 use super::fixed::{FixedSystem, solve_fixed_n};

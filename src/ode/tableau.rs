@@ -108,7 +108,7 @@ impl Tableau {
     /// Reads and validates a tableau file (RON, fields `name, a, b, c`).
     pub fn load(path: impl AsRef<Path>) -> Result<Self, Diagnostic> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path)
+        let text = crate::project_files::read_to_string(path)
             .map_err(|e| Diagnostic::whole_file(path, format!("cannot read tableau: {e}")))?;
         Self::parse(&text, path)
     }

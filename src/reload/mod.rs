@@ -6,4 +6,4 @@ mod watcher;
 
 pub use last_good::LastGood;
 pub use live::{LiveFile, Parser, Reloaded};
-pub use watcher::{DirWatcher, Settled, read_settled};
+pub use watcher::{DirWatcher, Settled, WatchError, read_settled};

@@ -169,7 +169,7 @@ impl TriMesh {
 
     /// Reads and parses an OBJ file.
     pub fn load_obj(path: &Path) -> Result<Self, Diagnostic> {
-        let text = std::fs::read_to_string(path)
+        let text = crate::project_files::read_to_string(path)
             .map_err(|e| Diagnostic::whole_file(path, format!("cannot read: {e}")))?;
         Self::parse_obj(&text, path)
     }

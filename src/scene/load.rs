@@ -19,7 +19,7 @@ pub fn parse_scene(text: &str, file: &Path) -> Result<Scene, Diagnostic> {
 
 /// Reads, parses and validates a scene file.
 pub fn load_scene(path: &Path) -> Result<Scene, Diagnostic> {
-    let text = std::fs::read_to_string(path)
+    let text = crate::project_files::read_to_string(path)
         .map_err(|e| Diagnostic::whole_file(path, format!("cannot read scene: {e}")))?;
     parse_scene(&text, path)
 }

@@ -69,7 +69,7 @@ pub fn resolve_path(deck_path: Option<&Path>, written: &str) -> Result<PathBuf, 
     };
     let path = r.map_err(|e| e.to_string())?;
     // said here in the deck's own words (the OS error names the absolute path)
-    if !path.is_file() {
+    if !crate::project_files::is_file(&path) {
         return Err(format!("`{written}`: no such file"));
     }
     Ok(path)
@@ -111,7 +111,7 @@ impl OdeSource {
             .unwrap_or_default();
         let problem = def.compile(&named).map_err(|e| match &file {
             // a fault inside a problem file: at its line and column there
-            Some(f) => OdeError::InFile(match std::fs::read_to_string(f) {
+            Some(f) => OdeError::InFile(match crate::project_files::read_to_string(f) {
                 Ok(text) => problem::diagnostic_at(&text, "", f, &e),
                 Err(_) => Diagnostic::whole_file(f, e.message.clone()),
             }),

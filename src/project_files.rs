@@ -1,0 +1,171 @@
+//! The one source of project files: every deck, problem file, tableau, scene, picture and ink
+//! file the app reads comes through [`read`], so the same loading code runs on the desktop
+//! (files on disk, changes reported by [`crate::reload::DirWatcher`]) and in the web player (an
+//! in-memory [`Bundle`] written by `lectern export --web`; it never changes, so the watcher
+//! there reports nothing).
+//!
+//! Paths are the ones [`crate::paths`] resolves; a bundle stores them in the same lexical form,
+//! so a deck that names `problems/a.ron` finds it in the bundle exactly where it found it on
+//! disk.
+
+use std::collections::HashMap;
+use std::io;
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, OnceLock};
+
+/// Where project files come from: "read this file". (Being told when one changed is the
+/// [`crate::reload::DirWatcher`]'s half; a bundle never changes.)
+pub trait FileSource: Send + Sync {
+    /// The file's bytes, or why not (missing, unreadable).
+    fn read(&self, path: &Path) -> io::Result<Vec<u8>>;
+    /// Whether `path` is a file this source can read.
+    fn is_file(&self, path: &Path) -> bool;
+}
+
+/// The files on disk (the desktop app, `lectern check`, `export`).
+pub struct Disk;
+
+impl FileSource for Disk {
+    fn read(&self, path: &Path) -> io::Result<Vec<u8>> {
+        std::fs::read(path)
+    }
+    fn is_file(&self, path: &Path) -> bool {
+        path.is_file()
+    }
+}
+
+/// Files held in memory, by path: the web player's copy of a project.
+#[derive(Default, Clone)]
+pub struct Bundle {
+    files: HashMap<PathBuf, Arc<[u8]>>,
+}
+
+impl Bundle {
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Adds (or replaces) the file at `path`.
+    pub fn insert(&mut self, path: impl AsRef<Path>, bytes: impl Into<Arc<[u8]>>) {
+        self.files
+            .insert(crate::paths::lexical(path.as_ref()), bytes.into());
+    }
+
+    pub fn len(&self) -> usize {
+        self.files.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.files.is_empty()
+    }
+}
+
+impl FileSource for Bundle {
+    fn read(&self, path: &Path) -> io::Result<Vec<u8>> {
+        self.files
+            .get(&crate::paths::lexical(path))
+            .map(|b| b.to_vec())
+            .ok_or_else(|| {
+                io::Error::new(
+                    io::ErrorKind::NotFound,
+                    format!("{} is not in the bundle", path.display()),
+                )
+            })
+    }
+    fn is_file(&self, path: &Path) -> bool {
+        self.files.contains_key(&crate::paths::lexical(path))
+    }
+}
+
+/// The files on disk, noting every one read (`lectern export --web` bundles exactly the files
+/// the deck's loading and drawing read).
+#[derive(Default)]
+pub struct Recording {
+    read: std::sync::Mutex<std::collections::BTreeSet<PathBuf>>,
+}
+
+impl Recording {
+    /// The files read so far (as asked for: resolved, absolute where the project's are).
+    pub fn files_read(&self) -> Vec<PathBuf> {
+        let read = self.read.lock().unwrap_or_else(|e| e.into_inner());
+        read.iter().cloned().collect()
+    }
+}
+
+impl FileSource for Recording {
+    fn read(&self, path: &Path) -> io::Result<Vec<u8>> {
+        let bytes = std::fs::read(path)?;
+        self.read.lock().unwrap_or_else(|e| e.into_inner()).insert(
+            path.canonicalize()
+                .unwrap_or_else(|_| crate::paths::lexical(path)),
+        );
+        Ok(bytes)
+    }
+    fn is_file(&self, path: &Path) -> bool {
+        path.is_file()
+    }
+}
+
+impl<T: FileSource + ?Sized> FileSource for Arc<T> {
+    fn read(&self, path: &Path) -> io::Result<Vec<u8>> {
+        (**self).read(path)
+    }
+    fn is_file(&self, path: &Path) -> bool {
+        (**self).is_file(path)
+    }
+}
+
+static INSTALLED: OnceLock<Box<dyn FileSource>> = OnceLock::new();
+
+/// Makes `source` the process's source of project files, once, before anything is loaded (the
+/// web player at start with its bundle; a test process with its own). Without it, [`Disk`].
+pub fn install(source: impl FileSource + 'static) -> Result<(), &'static str> {
+    INSTALLED
+        .set(Box::new(source))
+        .map_err(|_| "a source of project files is installed already")
+}
+
+/// The source in use.
+pub fn source() -> &'static dyn FileSource {
+    match INSTALLED.get() {
+        Some(s) => s.as_ref(),
+        None => &Disk,
+    }
+}
+
+/// The bytes of the project file at `path`.
+pub fn read(path: &Path) -> io::Result<Vec<u8>> {
+    source().read(path)
+}
+
+/// The text of the project file at `path` (UTF-8).
+pub fn read_to_string(path: &Path) -> io::Result<String> {
+    String::from_utf8(read(path)?).map_err(|e| io::Error::new(io::ErrorKind::InvalidData, e))
+}
+
+/// Whether the project file at `path` exists.
+pub fn is_file(path: &Path) -> bool {
+    source().is_file(path)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_bundle_finds_a_file_however_its_path_is_written() {
+        let mut b = Bundle::new();
+        b.insert("slides/problems/a.ron", b"(x: 1)".to_vec());
+        for written in [
+            "slides/problems/a.ron",
+            "./slides/problems/a.ron",
+            "slides/figures/../problems/a.ron",
+        ] {
+            assert_eq!(b.read(Path::new(written)).unwrap(), b"(x: 1)", "{written}");
+            assert!(b.is_file(Path::new(written)));
+        }
+        let e = b.read(Path::new("slides/problems/b.ron")).unwrap_err();
+        assert_eq!(e.kind(), io::ErrorKind::NotFound);
+        assert!(!b.is_file(Path::new("slides/problems")));
+    }
+}
