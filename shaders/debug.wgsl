@@ -7,6 +7,7 @@
 //!include fullscreen.wgsl
 //!include aces.wgsl
 //!include srgb.wgsl
+//!include encoding.wgsl
 
 // `PostParams` in src/render/tonemap.rs
 struct Post {
@@ -59,7 +60,7 @@ fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
             return to_target(vec3f(0.05));
         }
         // focusing factor: 1 (flat water) mid grey, the bright folds white
-        let focus = textureSampleLevel(caustics_map, env_sampler, p, 0.0).r;
+        let focus = caustics_load(textureSampleLevel(caustics_map, env_sampler, p, 0.0).r);
         return to_target(aces(vec3f(0.2 * focus)));
     }
     if (post.debug_view == 1u) {
@@ -117,7 +118,7 @@ fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
     }
     if (face >= 0) {
         let d = normalize(cross_dir(face, fract(c)));
-        return to_target(aces(textureSampleLevel(env_cube, env_sampler, d, 0.0).rgb));
+        return to_target(aces(hdr_load(textureSampleLevel(env_cube, env_sampler, d, 0.0).rgb)));
     }
     // the mip strip: the +x…−z equator seen at increasing roughness, one band per mip
     let mips = post.env_mip_count;
@@ -127,7 +128,7 @@ fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
         let mip = floor(t * mips);
         let yaw = c.x / 4.0 * 6.2831853;
         let d = vec3f(cos(yaw), 0.15, sin(yaw));
-        return to_target(aces(textureSampleLevel(env_cube, env_sampler, d, mip).rgb));
+        return to_target(aces(hdr_load(textureSampleLevel(env_cube, env_sampler, d, mip).rgb)));
     }
     return to_target(vec3f(0.05));
 }
