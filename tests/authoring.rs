@@ -382,4 +382,54 @@ fn the_presenter_overlay_shows_every_control_of_the_live_slide_at_720_px() {
         .collect();
     assert_eq!(fields.len(), 2, "{fields:?}");
     assert!(fields.iter().all(|r| r.bottom() <= 720.0), "{fields:?}");
+
+    // typing v' without ζ: the preview is large enough to read (its plot a quarter of the
+    // controls' area at least: it was ~60 points of 318 before the slide gave way to it), and
+    // after Enter ζ's slider stays, greyed and marked unused
+    let v_field = h
+        .get_all_by_role(egui::accesskit::Role::TextInput)
+        .nth(1)
+        .unwrap();
+    v_field.focus();
+    h.run_steps(2);
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
+    h.run_steps(1);
+    h.get_all_by_role(egui::accesskit::Role::TextInput)
+        .nth(1)
+        .unwrap()
+        .type_text("-omega^2*x");
+    h.run_steps(4);
+    let preview = h.get_by_label("equation preview").rect();
+    let area_top = h
+        .get_by_label("Live controls (R resets, Ctrl+S writes back)")
+        .rect()
+        .top();
+    let area_h = 720.0 - area_top;
+    // the plot: from under its y axis's name (a label, the only one of the preview's below
+    // its values) to the preview's bottom, less the x axis and its name (at most 45 points
+    // at the presenter's size)
+    let y_name_bottom = (h.query_all_by_label("v").map(|n| n.rect()))
+        .filter(|r| preview.contains_rect(*r))
+        .map(|r| r.bottom())
+        .fold(f32::NAN, f32::max);
+    let plot_h = preview.bottom() - y_name_bottom - 45.0;
+    assert!(
+        plot_h >= area_h / 4.0 && preview.bottom() <= 721.0,
+        "preview {preview:?}: its plot {plot_h} tall in a control area {area_h} tall"
+    );
+    h.key_press(egui::Key::Enter);
+    h.run_steps(4);
+    use egui_kittest::kittest::NodeT;
+    let unused: Vec<_> = h
+        .query_all_by_label("zeta (unused by the equation)")
+        .map(|n| n.accesskit_node().is_disabled())
+        .collect();
+    assert!(
+        !unused.is_empty() && unused.iter().all(|d| *d),
+        "{unused:?}"
+    );
+    assert!(
+        (h.query_all_by_label("omega")).all(|n| !n.accesskit_node().is_disabled()),
+        "ω still moves the plot"
+    );
 }

@@ -657,7 +657,7 @@ fn scene_pictures_are_large_lined_up_and_captioned_on_one_line() {
                 .collect();
             for caption in scene_columns.iter().flat_map(|col| col.iter()) {
                 if let Block::Text(t) = caption
-                    && !rows.iter().any(|r| r == t.trim())
+                    && !rows.iter().any(|r| r == t.src.trim())
                 {
                     failures.push(format!("{at}: caption {t:?} wraps"));
                 }
