@@ -2,7 +2,8 @@
 //! (PNG, PDF, `--data`) and presenting, each from a different working directory; the deck's
 //! path spelt four ways gives one result; the scene works in a project without `shaders/`
 //! (the built-in ones) and a project whose `shaders/` lacks one fails `check` at the widget;
-//! one unparsable slide leaves the others presenting and exporting.
+//! one unparsable slide leaves the others presenting and exporting; the presenter's controls and
+//! its typed-equation preview fit 1280×720; a phase plane in a column shows the view it asks for.
 
 mod common;
 
