@@ -237,7 +237,7 @@ impl SlideWidget for StepConstruction {
                     }
                     continue;
                 }
-                if ui.selectable_label(m == c, text).clicked() {
+                if style::control(ui, |ui| ui.selectable_label(m == c, text)).clicked() {
                     self.spec.method = c.reference();
                     self.spec.stage = 0;
                 }
