@@ -85,12 +85,13 @@ fn words(text: &str) -> String {
         .join(" ")
 }
 
-/// The pictures embedded in `pdf`, decoded (`pdfimages -j` writes the JPEGs as they are).
+/// The pictures embedded in `pdf`, decoded (`pdfimages -all` writes JPEGs as they are, the
+/// rest as PNG).
 fn pictures(pdf: &Path, dir: &Path) -> Vec<image::RgbImage> {
     let root = dir.join("img");
     poppler(
         "pdfimages",
-        &["-j".as_ref(), pdf.as_os_str(), root.as_os_str()],
+        &["-all".as_ref(), pdf.as_os_str(), root.as_os_str()],
     );
     let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
         .unwrap()
@@ -228,7 +229,7 @@ fn the_bundled_lecture_handout_is_small_light_and_has_every_text() {
     let dir = tempfile::tempdir().unwrap();
     for per_page in [2usize, 3] {
         let pdf = dir.path().join(format!("lecture-{per_page}.pdf"));
-        export(&[
+        let said = export(&[
             lecture().as_os_str(),
             "--pdf".as_ref(),
             pdf.as_os_str(),
@@ -236,6 +237,10 @@ fn the_bundled_lecture_handout_is_small_light_and_has_every_text() {
             "--per-page".as_ref(),
             per_page.to_string().as_ref(),
         ]);
+        assert!(
+            !said.contains("handout text has"),
+            "{per_page} a page: {said}"
+        );
         assert_eq!(pages(&pdf), n.div_ceil(per_page), "{per_page} a page");
         let bytes = std::fs::metadata(&pdf).unwrap().len();
         assert!(
@@ -325,7 +330,7 @@ fn handout_slides_draw_no_controls_and_every_control_is_listed() {
     work_precision::DETERMINISTIC.store(true, Ordering::Relaxed);
     let mut deck = load_deck(&lecture()).unwrap();
     deck.theme = Theme::Light;
-    let mut with_controls = 0;
+    let (mut with_controls, mut in_tree_controls) = (0, 0);
     for (i, slide) in deck.slides.iter().enumerate() {
         if slide.widgets().is_empty() {
             continue;
@@ -340,6 +345,7 @@ fn handout_slides_draw_no_controls_and_every_control_is_listed() {
             );
         }
         with_controls += usize::from(!listed.is_empty());
+        in_tree_controls += in_tree.len();
         let (listed, in_tree) = controls_of(&deck, i, ShowControls::Never);
         assert!(
             listed.is_empty() && in_tree.is_empty(),
@@ -354,5 +360,10 @@ fn handout_slides_draw_no_controls_and_every_control_is_listed() {
     assert!(
         with_controls >= 12,
         "only {with_controls} slides drew controls"
+    );
+    // the containment check above had controls to check
+    assert!(
+        in_tree_controls >= 30,
+        "{in_tree_controls} controls in the trees"
     );
 }

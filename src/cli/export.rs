@@ -1,6 +1,7 @@
 //! `lectern export`: render every slide to PNG and/or a PDF (the slides, a speaker's `--notes`
-//! sheet, or the students' `--handout`), headless, through the window's slide renderer. Exits non-zero when a formula or a widget failed on some slide (the
-//! files are still written) unless `--keep-going`.
+//! sheet, or the students' `--handout`), headless, through the window's slide renderer. Exits
+//! non-zero when a formula or a widget failed on some slide (the files are still written)
+//! unless `--keep-going`.
 
 use std::path::PathBuf;
 
@@ -96,21 +97,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         Layout::Slides
     };
     if let Layout::Handout { per_page } = layout {
-        // paper is white: the light theme whatever the deck says
-        deck.theme = crate::deck::Theme::Light;
-        for (index, slide) in deck.slides.iter().enumerate() {
-            let (len, budget) = (
-                slide.handout.chars().count(),
-                export_handout::text_budget_chars(per_page),
-            );
-            if len > budget {
-                eprintln!(
-                    "lectern: warning: slide {} ({:?}): its handout text has {len} characters; \
-                     about {budget} fit under a slide at {per_page} a page",
-                    index + 1,
-                    slide.key()
-                );
-            }
+        for warning in export_handout::prepare(&mut deck, per_page) {
+            eprintln!("lectern: warning: {warning}");
         }
     }
     let size = args.size.unwrap_or_else(|| match layout {

@@ -3,10 +3,9 @@
 //! the slide's `handout:` text (never its speaker notes). This module sizes the pictures and
 //! writes the Typst for the pages; [`super::export_pdf`] compiles it into the PDF.
 //!
-//! Sizes are chosen for print, not the screen: each picture is rendered at about 180 dpi of its
-//! printed width (2 a page: 1280 px, the slides' own layout at one pixel per point; 3 a page:
-//! 800 px) and embedded as JPEG, a quarter of the PNG's bytes for these light slides (figures
-//! in `docs/benchmarks/check-export.md`).
+//! Sizes are chosen for print, not the screen: each picture is rendered at 160–180 dpi of its
+//! printed width (2 a page: 1120 px; 3 a page: 800 px) and embedded as JPEG, a fifth of the
+//! PNG's bytes for these light slides (figures in `docs/benchmarks/check-export.md`).
 
 /// The slides on one page when `--per-page` is not given: 2, so plot labels print at the
 /// size of small text (3 a page prints them at 3–4 pt; still fine for revising).
@@ -25,14 +24,34 @@ fn text_room_mm(per_page: u8) -> f64 {
     if per_page <= 2 { 28.0 } else { 22.0 }
 }
 
-/// Print resolution of the pictures: 180 dpi keeps 3-point plot labels readable on paper; more
-/// costs bytes (the bundled lecture's 29 pictures must stay under 3 MB together).
-const PRINT_DPI: f64 = 180.0;
+/// Print resolution of the pictures: about 170 dpi keeps small plot labels readable on paper;
+/// more costs bytes (the bundled lecture's 29 pictures stay well under 3 MB together).
+const PRINT_DPI: f64 = 170.0;
 
 /// The handout text that fits under a slide, in characters (about the lines of
 /// [`text_room_mm`]): longer text would run into the next slide, so `export` warns.
 pub fn text_budget_chars(per_page: u8) -> usize {
     if per_page <= 2 { 520 } else { 400 }
+}
+
+/// The deck as the handout draws it: the light theme whatever the deck says (paper is white).
+/// Warns of `handout:` texts longer than fit under their slide.
+pub fn prepare(deck: &mut crate::deck::Deck, per_page: u8) -> Vec<String> {
+    deck.theme = crate::deck::Theme::Light;
+    let budget = text_budget_chars(per_page);
+    (deck.slides.iter().enumerate())
+        .filter_map(|(index, slide)| {
+            let len = slide.handout.chars().count();
+            (len > budget).then(|| {
+                format!(
+                    "slide {} ({:?}): its handout text has {len} characters; about {budget} \
+                     fit under a slide at {per_page} a page",
+                    index + 1,
+                    slide.key()
+                )
+            })
+        })
+        .collect()
 }
 
 /// Height of one slide's share of the page, in millimetres.
@@ -49,8 +68,8 @@ fn picture_width_mm(aspect: f64, per_page: u8) -> f64 {
 }
 
 /// The pixel size to render a slide of `aspect` at for `per_page` slides a page: about
-/// [`PRINT_DPI`], as a whole number of eighths of the slides' layout width, so at 2 a page the
-/// picture is that layout at one pixel per point (egui's sharpest text).
+/// [`PRINT_DPI`], as a whole number of eighths of the slides' layout width (a simple scale of
+/// the layout every export shows).
 pub fn picture_size_px(aspect: f32, per_page: u8) -> [u32; 2] {
     let layout_pt = f64::from(crate::app::offscreen::SLIDE_LAYOUT_WIDTH_PT);
     let width_mm = picture_width_mm(f64::from(aspect), per_page);
@@ -128,11 +147,34 @@ mod tests {
             // no narrower than needed: either the column's width or the slot's height is used
             assert!(w > 179.0 || h > room - 3.0, "{per_page}: {w} x {h} mm");
         }
-        assert_eq!(picture_size_px(16.0 / 9.0, 2), [1280, 720]);
+        assert_eq!(picture_size_px(16.0 / 9.0, 2), [1120, 630]);
         assert_eq!(picture_size_px(16.0 / 9.0, 3), [800, 450]);
         // 4:3 slides are narrower at 3 a page (the slot's height limits them)
         let [w, h] = picture_size_px(4.0 / 3.0, 3);
         assert!(w < 800 && h > 450, "{w}x{h}");
+    }
+
+    #[test]
+    fn the_handout_deck_is_light_and_long_texts_are_named() {
+        let mut deck: crate::deck::Deck = ron::from_str(&format!(
+            r#"(title: "T", theme: Dark, slides: [
+                (title: "short", handout: "fits"),
+                (id: "long", title: "Long", handout: "{}"),
+            ])"#,
+            "word ".repeat(100)
+        ))
+        .unwrap();
+        assert!(
+            prepare(&mut deck, 2).is_empty(),
+            "500 characters fit at 2 a page"
+        );
+        let warnings = prepare(&mut deck, 3);
+        assert_eq!(deck.theme, crate::deck::Theme::Light);
+        assert_eq!(warnings.len(), 1, "{warnings:?}");
+        assert!(
+            warnings[0].starts_with("slide 2 (\"long\")"),
+            "{warnings:?}"
+        );
     }
 
     #[test]
