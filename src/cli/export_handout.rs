@@ -159,7 +159,7 @@ mod tests {
         let mut deck: crate::deck::Deck = ron::from_str(&format!(
             r#"(title: "T", theme: Dark, slides: [
                 (title: "short", handout: "fits"),
-                (id: "long", title: "Long", handout: "{}"),
+                (title: "Long", handout: "{}"),
             ])"#,
             "word ".repeat(100)
         ))
@@ -172,7 +172,7 @@ mod tests {
         assert_eq!(deck.theme, crate::deck::Theme::Light);
         assert_eq!(warnings.len(), 1, "{warnings:?}");
         assert!(
-            warnings[0].starts_with("slide 2 (\"long\")"),
+            warnings[0].starts_with("slide 2 (\"Long\")"),
             "{warnings:?}"
         );
     }
