@@ -80,14 +80,15 @@ pub fn picture_size_px(aspect: f32, per_page: u8) -> [u32; 2] {
     [w as u32, h as u32].map(|v| v.clamp(16, 8192))
 }
 
-/// The page set-up: A4, the deck's title at the top right, "page n of N" at the foot.
+/// The page set-up: A4, the deck's title at the top right, "page n of N" at the foot; the
+/// maths font before the monospace one for what the text face lacks (subscript digits: k₁).
 pub fn preamble() -> String {
     format!(
         "#set page(paper: \"a4\", margin: (x: {MARGIN_X_MM}mm, y: {MARGIN_Y_MM}mm),\n\
          \x20 header: align(right, text(size: 8pt, fill: luma(40%), read(\"/title.txt\"))),\n\
          \x20 footer: context align(center, text(size: 8pt, fill: luma(40%),\n\
          \x20   counter(page).display(\"1 of 1\", both: true))))\n\
-         #set text(size: 10pt)\n\
+         #set text(font: (\"New Computer Modern\", \"New Computer Modern Math\", \"DejaVu Sans Mono\"), size: 10pt)\n\
          #set par(justify: false, leading: 0.55em, spacing: 0.8em)\n"
     )
 }
