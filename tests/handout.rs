@@ -12,7 +12,7 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use lectern::app::{ShowControls, SlideOptions, SlideState, slide_ui_with};
 use lectern::deck::{Deck, Theme, load_deck};
-use lectern::widgets::{style, work_precision};
+use lectern::widgets::{controls, work_precision};
 
 fn lecture() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("slides/lecture.ron")
@@ -293,7 +293,7 @@ const CONTROL_ROLES: [Role; 6] = [
 ];
 
 /// Slide `index` of `deck` drawn in a test harness with `controls`: the control rects the
-/// slide listed (`style::control_rects`) and the rects of the controls egui's accessibility
+/// slide listed (`controls::control_rects`) and the rects of the controls egui's accessibility
 /// tree has.
 fn controls_of(
     deck: &Deck,
@@ -312,7 +312,7 @@ fn controls_of(
             slide_ui_with(ui, &deck, index, &mut state, options);
         });
     h.run_steps(3);
-    let listed = style::control_rects(&h.ctx);
+    let listed = controls::control_rects(&h.ctx);
     let mut in_tree = Vec::new();
     for role in CONTROL_ROLES {
         in_tree.extend(h.query_all_by_role(role).map(|n| n.rect()));
@@ -324,7 +324,7 @@ fn controls_of(
 /// lecture (in the light theme, as printed) lists no control rect and has no control in its
 /// accessibility tree when drawn as the handout draws it; drawn with its controls, the same
 /// slides list them, and every control in the tree lies inside a listed rect (so the list is
-/// complete: a widget drawing a control past `style::control` fails here).
+/// complete: a widget drawing a control past `controls::control` fails here).
 #[test]
 fn handout_slides_draw_no_controls_and_every_control_is_listed() {
     work_precision::DETERMINISTIC.store(true, Ordering::Relaxed);

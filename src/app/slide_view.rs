@@ -37,7 +37,7 @@ pub struct SlideOptions<'a> {
 
 /// Whether a slide's widgets draw their sliders, checkboxes and buttons (see
 /// [`crate::widgets::style::controls_shown`]; where they went is in
-/// [`crate::widgets::style::control_rects`] after the slide is drawn).
+/// [`crate::widgets::controls::control_rects`] after the slide is drawn).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub enum ShowControls {
     /// As the deck's `controls:` says: on the slide, or on the presenter's side only.
@@ -141,7 +141,7 @@ pub fn slide_ui_with(
             .layout(egui::Layout::top_down(Align::Min)),
     );
     let mut style = widget_style(ui.style(), &look, deck.theme);
-    crate::widgets::style::begin_controls(ui.ctx());
+    crate::widgets::controls::begin_controls(ui.ctx());
     if !options.controls.shown(deck.controls) {
         style.text_styles.insert(
             egui::TextStyle::Name(crate::widgets::style::NO_CONTROLS_STYLE.into()),

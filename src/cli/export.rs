@@ -160,9 +160,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             ..SlideOptions::default()
         };
         let image = renderer.render_slide_with(&deck, index, &mut state, size, options)?;
-        let controls = crate::widgets::style::control_rects(renderer.egui_ctx());
+        let controls = crate::widgets::controls::control_rects(renderer.egui_ctx());
         if matches!(layout, Layout::Handout { .. }) && !controls.is_empty() {
-            // a widget that draws a control past `style::control`'s check
+            // a widget that calls `controls::control` where controls are hidden
             failures.push(format!(
                 "{}: slide {} ({:?}): {} control(s) drawn in the handout's picture",
                 path.display(),

@@ -273,55 +273,16 @@ pub fn controls_shown(ui: &egui::Ui) -> bool {
         .contains_key(&egui::TextStyle::Name(NO_CONTROLS_STYLE.into()))
 }
 
-/// Where the slide drawn last put its controls, in points: every slider, checkbox, button and
-/// choice a widget draws goes through [`control`], which notes its rect here. Cleared when a
-/// slide starts drawing ([`begin_controls`]); `lectern export --handout` and the tests read it
-/// (empty when the slide was drawn without controls).
-#[derive(Debug, Clone, Default)]
-pub struct ControlRects(pub Vec<egui::Rect>);
-
-fn control_rects_id() -> egui::Id {
-    egui::Id::unique("lectern-control-rects")
-}
-
-/// Starts a slide's list of control rects afresh.
-pub fn begin_controls(ctx: &egui::Context) {
-    ctx.data_mut(|d| d.insert_temp(control_rects_id(), ControlRects::default()));
-}
-
-/// The control rects of the slide drawn last (see [`ControlRects`]).
-pub fn control_rects(ctx: &egui::Context) -> Vec<egui::Rect> {
-    ctx.data(|d| d.get_temp::<ControlRects>(control_rects_id()))
-        .unwrap_or_default()
-        .0
-}
-
-/// Draws a control with `add` and notes where it went; the one way widgets draw controls on a
-/// slide. Call it only where [`controls_shown`].
-pub fn control(
-    ui: &mut egui::Ui,
-    add: impl FnOnce(&mut egui::Ui) -> egui::Response,
-) -> egui::Response {
-    let response = add(ui);
-    let rect = response.rect;
-    ui.ctx().data_mut(|d| {
-        d.get_temp_mut_or_default::<ControlRects>(control_rects_id())
-            .0
-            .push(rect)
-    });
-    response
-}
-
 /// A button that is on the slide only with its controls; whether it was clicked.
 pub fn button(ui: &mut egui::Ui, text: &str) -> bool {
-    controls_shown(ui) && control(ui, |ui| ui.button(text)).clicked()
+    controls_shown(ui) && super::controls::control(ui, |ui| ui.button(text)).clicked()
 }
 
 /// One of a set of choices (a selectable label), or where controls are hidden, its text when
 /// it is the chosen one and nothing otherwise; whether it was clicked.
 pub fn choice(ui: &mut egui::Ui, selected: bool, text: impl Into<egui::WidgetText>) -> bool {
     if controls_shown(ui) {
-        control(ui, |ui| ui.selectable_label(selected, text)).clicked()
+        super::controls::control(ui, |ui| ui.selectable_label(selected, text)).clicked()
     } else {
         if selected {
             ui.label(text);
@@ -340,7 +301,7 @@ pub fn slider<N: egui::emath::Numeric>(
     logarithmic: bool,
 ) {
     if controls_shown(ui) {
-        control(ui, |ui| {
+        super::controls::control(ui, |ui| {
             ui.add(
                 egui::Slider::new(value, range)
                     .logarithmic(logarithmic)
@@ -363,7 +324,7 @@ pub fn slider<N: egui::emath::Numeric>(
 /// entry) and nothing when it is off.
 pub fn toggle(ui: &mut egui::Ui, on: &mut bool, text: egui::RichText) {
     if controls_shown(ui) {
-        control(ui, |ui| ui.checkbox(on, text));
+        super::controls::control(ui, |ui| ui.checkbox(on, text));
     } else if *on {
         ui.label(text);
     }
