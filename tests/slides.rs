@@ -509,7 +509,7 @@ fn worst_window(full: &image::RgbaImage, small: &image::RgbaImage) -> (f64, (u32
 }
 
 /// `controls: Presenter`: the slide (projector, export) shows the plot and its values, not the
-/// sliders and checkboxes; the default deck shows them; `force_controls` (the `C` key) brings
+/// sliders and checkboxes; the default deck shows them; `ShowControls::Always` (the `C` key) brings
 /// them back.
 #[test]
 fn controls_presenter_shows_values_not_sliders() {
@@ -523,7 +523,10 @@ fn controls_presenter_shows_values_not_sliders() {
         let mut state = SlideState::default();
         let mut h = Harness::builder().with_size(SIZE).build_ui(move |ui| {
             let options = SlideOptions {
-                force_controls: force,
+                controls: match force {
+                    true => lectern::app::ShowControls::Always,
+                    false => lectern::app::ShowControls::AsDeck,
+                },
                 ..SlideOptions::default()
             };
             slide_ui_with(ui, &d, slope_field, &mut state, options);

@@ -86,6 +86,7 @@ pub fn error_slide(node: Option<&Node>, broken: &BrokenSlide) -> Slide {
             Block::Text(broken.diagnostic.to_string().into()),
         ],
         notes: format!("Fix the file and save: {}", broken.diagnostic),
+        handout: String::new(),
         seconds: None,
         skip: false,
     }

@@ -112,6 +112,10 @@ pub struct Slide {
     /// Speaker notes, shown on the presenter side only.
     #[serde(default)]
     pub notes: String,
+    /// Words for students, printed under the slide in the handout (`export --handout`); kept
+    /// apart from the speaker notes, which never reach the handout.
+    #[serde(default)]
+    pub handout: String,
     /// Planned time for this slide.
     #[serde(default)]
     pub seconds: Option<f32>,
