@@ -6,6 +6,7 @@ pub mod check_deck;
 pub mod export;
 pub mod export_data;
 pub mod export_pdf;
+pub mod export_web;
 pub mod inertia;
 pub mod new;
 pub mod present;
