@@ -144,7 +144,7 @@ impl SceneGpu {
         let index = match all.iter().position(|r| r.scene_path == scene_path) {
             Some(i) => i,
             None => {
-                let started = std::time::Instant::now();
+                let started = web_time::Instant::now();
                 let shader_dir = crate::bundled::shader_folder_for_scene(scene_path)?.dir;
                 let rs = &self.render_state;
                 let renderer =

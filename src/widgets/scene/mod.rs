@@ -127,7 +127,7 @@ impl SceneWidget {
             None => Ok(PathBuf::from(&spec.scene)),
         };
         let scene_path = crate::bundled::scene_file(resolved, &spec.scene).map(|f| f.path);
-        let started = std::time::Instant::now();
+        let started = web_time::Instant::now();
         let sim = scene_path.clone().and_then(|p| {
             crate::scene::load_scene(&p)
                 .map(SceneSim::new)
@@ -261,7 +261,7 @@ impl SceneWidget {
         if self.drawn.as_ref() == Some(&key) {
             return;
         }
-        let started = std::time::Instant::now();
+        let started = web_time::Instant::now();
         let snap = sim.snapshot();
         let result = gpu.with_renderer(path, &sim.scene, |r| {
             r.render(&sim.scene, &snap, &settings, &out.view, size);
