@@ -337,6 +337,8 @@ pub fn notes_under_slide_ui(
             .show(ui, |ui| {
                 if let Some(state) = editor {
                     ui.style_mut().override_font_id = Some(egui::FontId::proportional(s));
+                    // the editor's labels in the slide's text colour, on the letterbox
+                    ui.visuals_mut().override_text_color = Some(palette.text);
                     super::ode_editor::ode_editor_ui(ui, state);
                 }
                 ui.label(

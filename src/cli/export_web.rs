@@ -198,6 +198,7 @@ const INDEX_HTML: &str = r#"<!doctype html>
 <meta charset="utf-8">
 <meta name="viewport" content="width=device-width, initial-scale=1">
 <title>{title}</title>
+<link rel="icon" href="data:,">
 <style>
   html, body { margin: 0; height: 100%; overflow: hidden; background: #101014; }
   #lectern-canvas { display: block; width: 100%; height: 100%; touch-action: none; }

@@ -3,7 +3,8 @@
 //! browser tests read: `ready` (true once the first slide is drawn), `slide()` (1-based),
 //! `slides()` (the count) and `plotData()` (the current slide's first plot widget's points as
 //! JSON, the numbers `export --data` writes: [`crate::app::plot_data`]), and `editorField`
-//! (where to click to type an equation, once `N` shows the editor).
+//! (where to click to type an equation, once `N` shows the editor) and `editing` (a field has
+//! the keyboard).
 
 use std::cell::RefCell;
 use std::rc::Rc;
@@ -86,6 +87,11 @@ impl Hook {
         let _ = js_sys::Reflect::set(&self.object, &"ready".into(), &JsValue::TRUE);
     }
 
+    /// `editing`: a text field has the keyboard (keys are text, not paging or `+`).
+    fn set_editing(&self, editing: bool) {
+        let _ = js_sys::Reflect::set(&self.object, &"editing".into(), &JsValue::from(editing));
+    }
+
     /// `editorField`: the centre of the first equation field on screen, in CSS pixels from
     /// the canvas's corner (`N` shows the editor), or `null`.
     fn set_editor_field(&self, rect: Option<egui::Rect>) {
@@ -163,6 +169,7 @@ impl eframe::App for Player {
         self.write_fragment(index);
         self.hook
             .set_editor_field(crate::app::first_field_rect(ui.ctx()));
+        self.hook.set_editing(ui.ctx().text_edit_focused());
         // "ready" once a whole frame has reached the screen (the first one also installs the
         // fonts, which lays the slide out again in the next)
         self.frames += 1;

@@ -86,9 +86,17 @@ def rows_of_csv(path):
     return lines[0].split(","), out
 
 
+def series_counts(rows):
+    out = {}
+    for r in rows:
+        out[r[0]] = out.get(r[0], 0) + 1
+    return out
+
+
 def same_rows(got, want, tol=1e-12):
     if len(got) != len(want):
-        return "%d rows in the page, %d in export --data" % (len(got), len(want))
+        return "%d rows in the page %r, %d in export --data %r" % (
+            len(got), series_counts(got), len(want), series_counts(want))
     for i, (g, w) in enumerate(zip(got, want)):
         if len(g) != len(w):
             return "row %d: %r vs %r" % (i, g, w)
@@ -139,8 +147,11 @@ def check_page(args, url, size, figures, tag):
         field = d.execute_script("return window.lectern.editorField")
         ActionChains(d).move_to_element_with_offset(canvas, 0, 0).perform()
         ActionChains(d).move_by_offset(field["x"] - size[0] / 2, field["y"] - size[1] / 2).click().perform()
-        time.sleep(0.3)
-        key(d, Keys.CONTROL + "a")
+        # typed before the field has the keyboard, "+" and "-" would change h instead
+        wait_for(d, "return window.lectern.editing === true", 10)
+        # clear the field (End, then Backspace over the file's equation), type, Enter
+        key(d, Keys.END)
+        key(d, Keys.BACKSPACE * 60)
         key(d, args.equation)
         key(d, Keys.ENTER)
         header, want = rows_of_csv(args.expect)
