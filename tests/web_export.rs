@@ -73,8 +73,20 @@ fn the_bundle_holds_the_deck_its_files_formulas_and_fonts() {
         );
     }
     assert!(!html.contains("type=\"module\"") && html.contains("Talk &lt;1&gt;"));
+    // the player's wasm, gzipped, as base64
     let player = std::fs::read_to_string(page.join("player.js")).unwrap();
-    assert_eq!(player.trim(), "window.LECTERN_WASM = \"AGFzbQEAAAA=\";");
+    let b64 = player
+        .trim()
+        .strip_prefix("window.LECTERN_WASM_GZ = \"")
+        .and_then(|s| s.strip_suffix("\";"))
+        .unwrap();
+    use base64::Engine as _;
+    let gz = base64::engine::general_purpose::STANDARD
+        .decode(b64)
+        .unwrap();
+    let mut wasm = Vec::new();
+    std::io::Read::read_to_end(&mut flate2::read::GzDecoder::new(&gz[..]), &mut wasm).unwrap();
+    assert_eq!(wasm, b"\0asm\x01\0\0\0");
 
     let b = read_bundle(&page);
     assert_eq!(b.deck, "slides/talk.ron");

@@ -1,7 +1,7 @@
 //! `lectern export DECK --web DIR`: the deck as a static web page that pages through the same
 //! slides with every plot live (docs/web.md). DIR gets `index.html` and three classic scripts
 //! (a page opened from `file://` may neither `fetch` nor import modules): `lectern.js`
-//! (wasm-bindgen's `no-modules` glue), `player.js` (the player's wasm as base64) and
+//! (wasm-bindgen's `no-modules` glue), `player.js` (the player's wasm, gzipped, as base64) and
 //! `bundle.js` (the [`WebBundle`]: the deck and every file its loading and drawing read,
 //! collected with [`project_files::Recording`], every formula the slides asked for typeset by
 //! the app's own Typst at twice its layout size, and the fonts the slides use).
@@ -151,9 +151,12 @@ fn write_page(
     };
     let glue = read("lectern.js")?;
     let wasm = read("lectern_bg.wasm")?;
+    // gzipped: a third of the size, opened by the browser's own DecompressionStream
+    let mut gz = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::best());
+    std::io::Write::write_all(&mut gz, &wasm)?;
     let wasm_js = format!(
-        "window.LECTERN_WASM = \"{}\";\n",
-        base64::engine::general_purpose::STANDARD.encode(&wasm)
+        "window.LECTERN_WASM_GZ = \"{}\";\n",
+        base64::engine::general_purpose::STANDARD.encode(gz.finish()?)
     );
     // the bundle's JSON as one JavaScript string (JSON's string syntax is JavaScript's)
     let bundle_js = format!(
@@ -224,14 +227,21 @@ const INDEX_HTML: &str = r#"<!doctype html>
     var loading = document.getElementById("lectern-loading");
     if (loading) loading.remove();
   }
-  if (typeof wasm_bindgen === "undefined" || typeof window.LECTERN_WASM !== "string") {
+  if (typeof wasm_bindgen === "undefined" || typeof window.LECTERN_WASM_GZ !== "string") {
     fail("the player (lectern.js, player.js) is missing or damaged: export the page again " +
       "with `lectern export DECK --web DIR`");
     return;
   }
-  var text = atob(window.LECTERN_WASM), bytes = new Uint8Array(text.length);
-  for (var i = 0; i < text.length; i++) bytes[i] = text.charCodeAt(i);
-  wasm_bindgen({ module_or_path: bytes }).catch(function (e) { fail(String(e)); });
+  if (typeof DecompressionStream === "undefined") {
+    fail("this browser is too old for the page (it lacks DecompressionStream)");
+    return;
+  }
+  var text = atob(window.LECTERN_WASM_GZ), gz = new Uint8Array(text.length);
+  for (var i = 0; i < text.length; i++) gz[i] = text.charCodeAt(i);
+  var wasm = new Blob([gz]).stream().pipeThrough(new DecompressionStream("gzip"));
+  new Response(wasm).arrayBuffer()
+    .then(function (bytes) { return wasm_bindgen({ module_or_path: bytes }); })
+    .catch(function (e) { fail(String(e)); });
 })();
 </script>
 </body>

@@ -132,13 +132,6 @@ def check_page(args, url, size, figures, tag):
         # the fragment opens a slide (a link from a course page)
         d.execute_script("location.hash = '#/13'")
         wait_for(d, "return window.lectern.slide() === 13", 10)
-        # + on the Euler slide changes the computed points
-        d.execute_script("location.hash = '#/%d'" % args.euler)
-        wait_for(d, "return window.lectern.slide() === %d" % args.euler, 10)
-        before = plot(d)
-        assert before is not None, "no plot data on the Euler slide"
-        key(d, "+")
-        wait_for(d, "return window.lectern.plotData() !== %s" % json.dumps(json.dumps(before)), 10)
         # typing an equation: N shows the editor under the slide
         d.execute_script("location.hash = '#/%d'" % args.slope)
         wait_for(d, "return window.lectern.slide() === %d" % args.slope, 10)
@@ -165,6 +158,13 @@ def check_page(args, url, size, figures, tag):
                     break
             time.sleep(0.1)
         assert problem is None, "after typing %r: %s" % (args.equation, problem)
+        # + on the Euler slide changes the computed points
+        d.execute_script("location.hash = '#/%d'" % args.euler)
+        wait_for(d, "return window.lectern.slide() === %d" % args.euler, 10)
+        before = plot(d)
+        assert before is not None, "no plot data on the Euler slide"
+        key(d, "+")
+        wait_for(d, "return window.lectern.plotData() !== %s" % json.dumps(json.dumps(before)), 10)
         errors = severe(d)
         assert not errors, "console errors: %r" % errors
     finally:
