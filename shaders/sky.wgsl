@@ -8,6 +8,7 @@
 // cube map, then drawn as the background along each pixel's view ray (environment mapping:
 // Blinn & Newell 1976; cube maps: Greene 1986).
 //!include common.wgsl
+//!include encoding.wgsl
 //!include fullscreen.wgsl
 //!include cube_face.wgsl
 
@@ -97,7 +98,7 @@ fn sky_radiance(d: vec3f) -> vec3f {
 
 @fragment
 fn fs_cube_face(in: FullscreenOut) -> @location(0) vec4f {
-    return vec4f(sky_radiance(face_dir(sky.face.x, in.ndc)), 1.0);
+    return vec4f(hdr_store(sky_radiance(face_dir(sky.face.x, in.ndc))), 1.0);
 }
 
 // Background: the depth test (LessEqual at depth 1) keeps it behind everything. Alpha holds the
@@ -107,11 +108,11 @@ fn fs_background(in: FullscreenOut) -> @location(0) vec4f {
     let far = g.world_from_clip * vec4f(in.ndc, 1.0, 1.0);
     let dir = normalize(far.xyz / far.w - g.eye_m);
     if (g.debug_view == DEBUG_NORMALS) {
-        return vec4f(0.0, 0.0, 0.0, g.far_m);
+        return vec4f(0.0, 0.0, 0.0, dist_store(g.far_m, g.near_m, g.far_m));
     }
     var c: vec3f;
     if (on(g.env_map_on)) {
-        c = textureSampleLevel(env_cube, env_sampler, dir, 0.0).rgb;
+        c = hdr_load(textureSampleLevel(env_cube, env_sampler, dir, 0.0).rgb);
     } else {
         // no environment: nothing to see or reflect but a flat grey (the "off" picture)
         c = ENV_OFF_RADIANCE;

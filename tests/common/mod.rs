@@ -61,3 +61,62 @@ pub fn scene_snapshot_options(img: &image::RgbaImage) -> egui_kittest::SnapshotO
         .threshold(SCENE_SNAPSHOT_THRESHOLD)
         .max_failed_pixels(scene_max_failed_pixels(img))
 }
+
+/// A headless device on the GL backend (Mesa's llvmpipe in CI), or None after saying loudly why
+/// not: the caller skips only its GL case.
+pub fn gl_gpu(test: &str) -> Option<lectern::render::gpu::Gpu> {
+    let request = lectern::render::gpu::GpuRequest {
+        backends: Some(wgpu::Backends::GL),
+        ..Default::default()
+    };
+    match lectern::render::gpu::Gpu::new(&request) {
+        Ok(gpu) => Some(gpu),
+        Err(e) => {
+            eprintln!(
+                "\n!!!!! {test}: SKIPPING THE GL CASE: no GL adapter ({e:#}); \
+                 install libegl1 libgl1-mesa-dri !!!!!\n"
+            );
+            None
+        }
+    }
+}
+
+/// The scene renderer on the GL backend with the formats its adapter allows.
+pub fn gl_headless(
+    test: &str,
+    scene: lectern::scene::Scene,
+    shaders: &Path,
+) -> Option<lectern::render::Headless> {
+    let gpu = gl_gpu(test)?;
+    assert_eq!(gpu.adapter_info.backend, wgpu::Backend::Gl);
+    let caps = lectern::render::caps::RenderCaps::decide(&gpu.caps);
+    Some(lectern::render::Headless::with_gpu(gpu, caps, scene, shaders).unwrap())
+}
+
+/// Every text a slide draws, as (text, screen rect, clip rect).
+pub fn text_boxes(output: &egui::FullOutput) -> Vec<(String, egui::Rect, egui::Rect)> {
+    use egui::epaint::Shape;
+    fn walk(shape: &Shape, clip: egui::Rect, out: &mut Vec<(String, egui::Rect, egui::Rect)>) {
+        match shape {
+            Shape::Vec(v) => v.iter().for_each(|s| walk(s, clip, out)),
+            // row by row: a label in a wrapping row is laid out from the row's left edge
+            // (its galley's rect covers that leading space), so the rows' own rects are where
+            // the glyphs are
+            Shape::Text(t) if t.angle == 0.0 => {
+                for row in &t.galley.rows {
+                    let text: String = row.row.glyphs.iter().map(|g| g.chr).collect();
+                    if !text.trim().is_empty() {
+                        let rect = row.rect_without_leading_space().translate(t.pos.to_vec2());
+                        out.push((text, rect, clip));
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    let mut out = Vec::new();
+    for c in &output.shapes {
+        walk(&c.shape, c.clip_rect, &mut out);
+    }
+    out
+}
