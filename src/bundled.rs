@@ -132,6 +132,14 @@ fn remove_other_versions(cache: &Path, keep: &str) {
     }
 }
 
+/// In a browser there is no file system (std's `temp_dir` panics there): a name that every
+/// read and write simply fails on, so the built-in files are "not found" as anywhere else.
+#[cfg(target_arch = "wasm32")]
+fn cache_root() -> PathBuf {
+    PathBuf::from("lectern-cache")
+}
+
+#[cfg(not(target_arch = "wasm32"))]
 fn cache_root() -> PathBuf {
     let from_env = |k: &str| {
         std::env::var_os(k)

@@ -11,6 +11,7 @@ pub mod image_file;
 pub mod paths;
 pub mod project_files;
 pub mod ron_tree;
+pub mod web_bundle;
 
 // numerics and simulation: no GPU or UI types below this line
 pub mod ode;
@@ -32,3 +33,7 @@ pub mod widgets;
 // the command line: native only (it typesets, spawns workers, writes files)
 #[cfg(not(target_arch = "wasm32"))]
 pub mod cli;
+
+// the web player: eframe's WebRunner on a canvas, the deck from the page's bundle
+#[cfg(target_arch = "wasm32")]
+pub mod web;

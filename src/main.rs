@@ -1,8 +1,17 @@
 //! `lectern`: present the lecture (default), or export, check, solve, bench, inertia, render-scene.
 
+// In a browser (`wasm32`) this binary is the web player (docs/web.md): no command line.
+#[cfg(target_arch = "wasm32")]
+fn main() {
+    lectern::web::start();
+}
+
+#[cfg(not(target_arch = "wasm32"))]
 use clap::{Parser, Subcommand};
+#[cfg(not(target_arch = "wasm32"))]
 use lectern::cli;
 
+#[cfg(not(target_arch = "wasm32"))]
 #[derive(Parser)]
 #[command(
     name = "lectern",
@@ -14,6 +23,7 @@ struct Cli {
     command: Option<Command>,
 }
 
+#[cfg(not(target_arch = "wasm32"))]
 #[derive(Subcommand)]
 enum Command {
     /// Present a deck in a window (the default).
@@ -44,6 +54,7 @@ enum Command {
     },
 }
 
+#[cfg(not(target_arch = "wasm32"))]
 fn main() -> std::process::ExitCode {
     let cli = Cli::parse();
     let window = matches!(cli.command, None | Some(Command::Present(_)));
@@ -88,6 +99,7 @@ fn main() -> std::process::ExitCode {
     }
 }
 
+#[cfg(not(target_arch = "wasm32"))]
 /// Mesa's Vulkan software driver (lavapipe) prints "XDG_RUNTIME_DIR is invalid or not set" when
 /// the variable names no folder (a server, CI, a `sudo` shell, a bare Xvfb). Every command,
 /// the window included, then gets a private one and the line goes away: a valid one (a

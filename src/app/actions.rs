@@ -33,6 +33,9 @@ impl LecternApp {
             };
             handled.push(keys::is_handled(event, mode));
             for action in keys::actions(std::slice::from_ref(event), mode) {
+                if self.player && !keys::in_player(action) {
+                    continue;
+                }
                 self.apply(action, ctx);
             }
         }
@@ -93,6 +96,7 @@ impl LecternApp {
             GotoStart => self.overlay = Overlay::Goto(String::new()),
             ToggleOverview => self.toggle_overlay(Overlay::Overview),
             ToggleHelp => self.toggle_overlay(Overlay::Help),
+            ToggleNotes => self.show_notes = !self.show_notes,
             ToggleFullscreen => {
                 let full = ctx.input(|i| i.viewport().fullscreen.unwrap_or(false));
                 ctx.send_viewport_cmd(egui::ViewportCommand::Fullscreen(!full));
@@ -238,4 +242,20 @@ impl LecternApp {
             overlay
         };
     }
+}
+
+/// A swipe across the slide's background that just ended: `Some(true)` for "next" (finger
+/// moved left), `Some(false)` for "previous". Mostly sideways and at least a tenth of the
+/// slide's width, so a tap or a slip is no swipe.
+pub(super) fn swipe(ctx: &egui::Context, background: &egui::Response) -> Option<bool> {
+    if !background.drag_stopped() {
+        return None;
+    }
+    let moved = ctx.input(|i| {
+        let from = i.pointer.press_origin()?;
+        let to = i.pointer.interact_pos()?;
+        Some(to - from)
+    })?;
+    let enough = background.rect.width() * 0.1;
+    (moved.x.abs() >= enough && moved.x.abs() > 2.0 * moved.y.abs()).then_some(moved.x < 0.0)
 }

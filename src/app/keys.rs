@@ -21,6 +21,8 @@ pub enum Action {
     /// `Tab`: slide mode ↔ scene mode.
     ToggleMode,
     ToggleHelp,
+    /// `N`: the speaker notes under the slide (self-study, and the web player).
+    ToggleNotes,
     /// Leaves overlays, then fullscreen.
     Escape,
     /// `P`: presenter overlay on a single screen.
@@ -78,6 +80,7 @@ pub const HELP: &[(&str, &str)] = &[
     ("B", "black screen"),
     ("Tab", "slides ↔ water scene"),
     ("P", "presenter view (notes, timer, next slide)"),
+    ("N", "speaker notes under the slide"),
     ("C", "controls on the audience screen"),
     ("- +", "widget: step size h down / up"),
     ("[ ]", "widget: step back / forward"),
@@ -94,6 +97,50 @@ pub const HELP: &[(&str, &str)] = &[
     ("Ctrl+Q", "quit"),
     ("Esc", "close overlays, stop drawing, fullscreen"),
 ];
+
+/// The `?` list of the web player: what a browser page does (no scene mode, presenter, ink,
+/// files or quitting there).
+pub const PLAYER_HELP: &[(&str, &str)] = &[
+    ("→ ↓ Space PageDown click", "next slide"),
+    ("← ↑ PageUp", "previous slide"),
+    ("swipe left / right", "next / previous slide"),
+    ("Home End", "first / last slide"),
+    ("G number Enter", "go to slide (or #/number in the address)"),
+    ("O", "overview of all slides"),
+    ("N", "speaker notes under the slide"),
+    ("B", "black screen"),
+    ("- +", "widget: step size h down / up"),
+    ("[ ]", "widget: step back / forward"),
+    ("drag", "widget: move the start"),
+    ("R", "reset this slide's tweaks"),
+    ("Ctrl+1…9 1…9", "store / recall a tweak bookmark"),
+    ("?", "this list"),
+    ("Esc", "close overlays"),
+];
+
+/// Whether the web player does `action` (the rest need a desktop: files, windows, the GPU
+/// scene, ink).
+pub fn in_player(action: Action) -> bool {
+    use Action::*;
+    !matches!(
+        action,
+        ToggleFullscreen
+            | ToggleMode
+            | TogglePresenter
+            | ToggleControls
+            | TimerPause
+            | TimerReset
+            | ExportSlide
+            | WriteBack
+            | TogglePen
+            | ToggleHighlighter
+            | ToggleLaser
+            | InkColor(_)
+            | UndoInk
+            | ClearInk
+            | Quit
+    )
+}
 
 /// The actions in `events`, read in `mode`.
 pub fn actions(events: &[Event], mode: KeyMode) -> Vec<Action> {
@@ -205,6 +252,7 @@ fn action(event: &Event, mode: KeyMode) -> Option<Action> {
                 Key::D => TogglePen,
                 Key::H => ToggleHighlighter,
                 Key::L => ToggleLaser,
+                Key::N => ToggleNotes,
                 _ => match digit {
                     Some(d @ 1..=5) if mode == KeyMode::Drawing => InkColor(d - 1),
                     Some(d @ 1..=9) => BookmarkRecall(d),
@@ -312,6 +360,20 @@ mod tests {
             while_editing(&press(Key::S, Modifiers::CTRL)),
             Some(WriteBack)
         );
+    }
+
+    #[test]
+    fn n_shows_the_notes_and_the_player_keeps_to_what_a_page_can_do() {
+        let none = Modifiers::NONE;
+        assert_eq!(
+            actions(&[press(Key::N, none)], KeyMode::Normal),
+            vec![ToggleNotes]
+        );
+        assert!(in_player(ToggleNotes) && in_player(Next) && in_player(ToggleOverview));
+        assert!(!in_player(ToggleMode) && !in_player(WriteBack) && !in_player(Quit));
+        for (k, _) in PLAYER_HELP {
+            assert!(!k.contains("Tab") && !k.contains("Ctrl+S"), "{k}");
+        }
     }
 
     #[test]

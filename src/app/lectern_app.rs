@@ -86,6 +86,10 @@ pub struct LecternApp {
     /// view, the black screen) is not painted again. On a software rasteriser each
     /// window-sized rectangle costs tens of milliseconds of CPU per frame.
     pub(super) window_clear: bool,
+    /// The web player: only the keys a page can honour, and its own `?` list.
+    pub(super) player: bool,
+    /// `N`: the speaker notes under the slide.
+    pub(super) show_notes: bool,
 }
 
 impl LecternApp {
@@ -116,7 +120,20 @@ impl LecternApp {
             frames: FrameClock::default(),
             clear: egui::Color32::BLACK,
             window_clear: false,
+            player: false,
+            show_notes: false,
         }
+    }
+
+    /// The web player's app: the desktop's keys less those a page cannot honour (scene mode,
+    /// presenter, ink, files, quit), and the player's `?` list.
+    pub fn set_player(&mut self) {
+        self.player = true;
+    }
+
+    /// Whether `N` put the speaker notes under the slide.
+    pub fn notes_shown(&self) -> bool {
+        self.show_notes
     }
 
     /// See [`Self::clear_color32`]: on in the window (eframe clears it to that colour), off
@@ -150,6 +167,21 @@ impl LecternApp {
 
     pub fn session(&self) -> &DeckSession {
         &self.session
+    }
+
+    /// The session, to navigate from outside a frame (the web player's `#/N`).
+    pub fn session_mut(&mut self) -> &mut DeckSession {
+        &mut self.session
+    }
+
+    /// The current slide's first plot widget's points as JSON (the web player's test hook;
+    /// the numbers `export --data` writes, see [`super::plot_data`]).
+    pub fn first_plot_json(&mut self) -> String {
+        let index = self.session.nav().index();
+        let Some(slide) = self.session.deck().slides.get(index) else {
+            return "null".into();
+        };
+        super::plot_data::first_plot_json(slide, self.states.slide(slide))
     }
 
     pub fn nav(&self) -> &Nav {
@@ -249,14 +281,44 @@ impl LecternApp {
                     },
                     ..SlideOptions::default()
                 };
-                let resp = slide_ui_with(ui, deck, index, self.states.slide(slide), options);
+                let (slide_rect, notes_rect) = if self.show_notes {
+                    let all = ui.available_rect_before_wrap();
+                    let split = all.top() + all.height() * 0.72;
+                    let (top, bottom) = all.split_top_bottom_at_y(split);
+                    (top, Some(bottom))
+                } else {
+                    (ui.available_rect_before_wrap(), None)
+                };
+                let state = self.states.slide(slide);
+                let resp = ui
+                    .scope_builder(egui::UiBuilder::new().max_rect(slide_rect), |ui| {
+                        slide_ui_with(ui, deck, index, state, options)
+                    })
+                    .inner;
+                if let Some(rect) = notes_rect {
+                    let editor = self.player.then(|| self.states.slide(slide));
+                    overlays::notes_under_slide_ui(ui, rect, &slide.notes, &palette, editor);
+                }
                 let (key, theme) = (slide.key().to_owned(), deck.theme);
                 // The pointer first, then the ink: a stroke shows in the frame it is drawn.
                 let mut said = None;
                 if drawing {
                     said = self.ink.input_ui(&ctx, &key, &resp);
-                } else if resp.background.clicked() && self.overlay == Overlay::None {
-                    self.session.navigate(|nav, deck| nav.next(deck));
+                } else if self.overlay == Overlay::None {
+                    // a click on the slide (not on a widget) is "next"; a swipe pages
+                    let paged = match super::actions::swipe(&ctx, &resp.background) {
+                        Some(forward) => Some(forward),
+                        None => resp.background.clicked().then_some(true),
+                    };
+                    match paged {
+                        Some(true) => {
+                            self.session.navigate(|nav, deck| nav.next(deck));
+                        }
+                        Some(false) => {
+                            self.session.navigate(|nav, deck| nav.prev(deck));
+                        }
+                        None => {}
+                    }
                 }
                 paint_on_slide(ui, &resp, theme, &self.ink.view(&key, now));
                 if let Some(msg) = said {
@@ -266,7 +328,14 @@ impl LecternApp {
             (Mode::Scene, _) => self.scene_ui(ui, &palette),
         }
         match &self.overlay {
-            Overlay::Help => overlays::help_ui(ui, &palette),
+            Overlay::Help => {
+                let lines = if self.player {
+                    super::keys::PLAYER_HELP
+                } else {
+                    super::keys::HELP
+                };
+                overlays::help_ui(ui, &palette, lines)
+            }
             Overlay::Goto(typed) => {
                 overlays::goto_ui(ui, typed, self.session.deck().slides.len(), &palette)
             }
@@ -415,7 +484,9 @@ impl eframe::App for LecternApp {
             });
             self.ink.set_plain_edges(software);
         }
-        // Scene widgets on slides render on the window's device and animate there.
+        // Scene widgets on slides render on the window's device and animate there (not yet in
+        // a browser: WebGL2 lacks what the water needs; the widget shows its exported frame).
+        #[cfg(not(target_arch = "wasm32"))]
         if let Some(rs) = &self.render_state
             && crate::widgets::scene::SceneGpu::get(ui.ctx()).is_none()
         {

@@ -18,6 +18,7 @@ mod ode_editor;
 pub mod offscreen;
 pub mod overlays;
 pub mod pacing;
+pub mod plot_data;
 pub mod presenter;
 pub mod scene_mode;
 mod scene_panel;
@@ -32,6 +33,7 @@ mod widget_style;
 mod windows;
 
 pub use lectern_app::{LecternApp, Mode, Overlay};
+pub use ode_editor::first_field_rect;
 pub use offscreen::{OffscreenError, OffscreenRenderer, render_slide_png};
 pub use scene_mode::SceneMode;
 pub use slide_state::{

@@ -112,6 +112,7 @@ pub fn equation_ui(ui: &mut egui::Ui, kind: &str, ode: &mut LiveOde) {
                 .desired_width(ui.available_width());
             // named by its label, for screen readers (and the UI tests' queries)
             let field = ui.add(edit).labelled_by(name.id);
+            note_field(ui.ctx(), field.rect);
             if field.changed() {
                 ode.set_draft(slot, &text);
             }
@@ -137,6 +138,29 @@ pub fn equation_ui(ui: &mut egui::Ui, kind: &str, ode: &mut LiveOde) {
     if ode.has_draft() && ode.draft_problem().is_none() {
         ui.label(RichText::new("not shown to the room yet: Enter shows it, Esc reverts").italics());
     }
+}
+
+fn first_field_id() -> egui::Id {
+    egui::Id::unique("lectern-first-equation-field")
+}
+
+/// Remembers the first equation field drawn in this pass.
+fn note_field(ctx: &egui::Context, rect: egui::Rect) {
+    let pass = ctx.cumulative_pass_nr();
+    ctx.data_mut(|d| {
+        let seen = d.get_temp_mut_or_insert_with(first_field_id(), || (pass, rect));
+        if seen.0 != pass {
+            *seen = (pass, rect);
+        }
+    });
+}
+
+/// Where the first equation field of the last pass was drawn, if one was (the web player's
+/// test hook clicks there to type).
+pub fn first_field_rect(ctx: &egui::Context) -> Option<egui::Rect> {
+    let pass = ctx.cumulative_pass_nr();
+    let (seen, rect) = ctx.data(|d| d.get_temp::<(u64, egui::Rect)>(first_field_id()))?;
+    (seen + 1 >= pass).then_some(rect)
 }
 
 /// Under the field: the text again with a caret under the faulty column, and the message. The

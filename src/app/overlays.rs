@@ -4,7 +4,6 @@
 
 use egui::{Align2, Color32, CornerRadius, Rect, Sense, Stroke, vec2};
 
-use super::keys::HELP;
 use super::slide_state::DeckState;
 use super::slide_view::{SlideOptions, slide_ui_with};
 use super::theme::{self, Palette};
@@ -37,7 +36,8 @@ fn dim_backdrop(ui: &egui::Ui, alpha: u8) {
 }
 
 /// The `?` key list, centred.
-pub fn help_ui(ui: &mut egui::Ui, palette: &Palette) {
+/// The `?` card listing `lines` (keys, what they do).
+pub fn help_ui(ui: &mut egui::Ui, palette: &Palette, lines: &[(&str, &str)]) {
     let ctx = ui.ctx().clone();
     egui::Area::new(egui::Id::unique("lectern-help"))
         .order(egui::Order::Foreground)
@@ -48,12 +48,12 @@ pub fn help_ui(ui: &mut egui::Ui, palette: &Palette) {
             let bold = theme::family_or_default(&ctx, theme::SERIF_BOLD);
             let screen = ctx.content_rect();
             // As large as the window's text, but every line on the card.
-            let rows = HELP.len() as f32 + 2.6;
+            let rows = lines.len() as f32 + 2.6;
             let s = text_size(ui)
                 .min(screen.height() * 0.96 / (1.45 * rows))
                 .min(screen.width() * 0.96 / 32.0);
             let row_h = s * 1.45;
-            let size = vec2(s * 32.0, row_h * (HELP.len() as f32 + 2.6));
+            let size = vec2(s * 32.0, row_h * (lines.len() as f32 + 2.6));
             let rect = Rect::from_center_size(screen.center(), size.min(screen.size() * 0.96));
             card(ui, rect, palette);
             let p = ui.painter();
@@ -65,7 +65,7 @@ pub fn help_ui(ui: &mut egui::Ui, palette: &Palette) {
                 palette.title,
             );
             let col = rect.left() + s * 14.5;
-            for (i, (keys, what)) in HELP.iter().enumerate() {
+            for (i, (keys, what)) in lines.iter().enumerate() {
                 let y = rect.top() + s * 1.2 + row_h * (i as f32 + 1.6);
                 p.text(
                     egui::pos2(col - s * 0.8, y),
@@ -310,4 +310,42 @@ pub fn scene_placeholder_ui(ui: &mut egui::Ui, palette: &Palette, why: &str) {
         palette.dim,
     );
     ui.advance_cursor_after_rect(rect);
+}
+
+/// `N`: the slide's speaker notes in `rect`, under the slide (self-study, the web player);
+/// with `editor`, first the equation editor of the slide's ODE widgets (the web player, where
+/// a student types their own right-hand side).
+pub fn notes_under_slide_ui(
+    ui: &mut egui::Ui,
+    rect: Rect,
+    notes: &str,
+    palette: &Palette,
+    editor: Option<&mut super::SlideState>,
+) {
+    let ctx = ui.ctx().clone();
+    let serif = theme::family_or_default(&ctx, theme::SERIF);
+    let s = (rect.height() / 7.0).clamp(11.0, 22.0);
+    let text = if notes.trim().is_empty() {
+        "(no notes for this slide)"
+    } else {
+        notes.trim()
+    };
+    ui.painter().rect_filled(rect, 0.0, palette.letterbox);
+    ui.scope_builder(egui::UiBuilder::new().max_rect(rect.shrink(s)), |ui| {
+        egui::ScrollArea::vertical()
+            .id_salt("lectern-notes")
+            .show(ui, |ui| {
+                if let Some(state) = editor {
+                    ui.style_mut().override_font_id = Some(egui::FontId::proportional(s));
+                    // the editor's labels in the slide's text colour, on the letterbox
+                    ui.visuals_mut().override_text_color = Some(palette.text);
+                    super::ode_editor::ode_editor_ui(ui, state);
+                }
+                ui.label(
+                    egui::RichText::new(text)
+                        .font(egui::FontId::new(s, serif))
+                        .color(palette.text),
+                );
+            });
+    });
 }

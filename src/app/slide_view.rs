@@ -114,7 +114,8 @@ pub fn slide_ui_with(
     let background = ui.interact(
         canvas,
         ui.scope_id().with(("slide-bg", index)),
-        Sense::click(),
+        // drag too: a swipe across the slide pages (touch screens, the web player)
+        Sense::click_and_drag(),
     );
     ui.advance_cursor_after_rect(avail);
 

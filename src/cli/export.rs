@@ -18,7 +18,7 @@ use crate::deck::{InkFile, load_deck};
 /// Render every slide to PNG and/or a PDF handout, headless (any GPU, or Mesa's software
 /// adapter).
 #[derive(Debug, clap::Args)]
-#[command(group(clap::ArgGroup::new("target").args(["out", "pdf"]).required(true).multiple(true)))]
+#[command(group(clap::ArgGroup::new("target").args(["out", "pdf", "web"]).required(true).multiple(true)))]
 pub struct Args {
     /// The deck to export [default: slides/lecture.ron]
     pub deck: Option<PathBuf>,
@@ -28,6 +28,10 @@ pub struct Args {
     /// Also (or only) write a PDF: one page per slide, the page shaped like the slide.
     #[arg(long, value_name = "FILE.pdf")]
     pub pdf: Option<PathBuf>,
+    /// Also (or only) write the deck as a web page into DIR: `index.html` and its scripts,
+    /// the plots live, working from `file://` and from any static server (docs/web.md).
+    #[arg(long, value_name = "DIR")]
+    pub web: Option<PathBuf>,
     /// PDF handout layout: A4 pages with the slide on top and its speaker notes below (as
     /// text that can be searched and copied).
     #[arg(long, requires = "pdf")]
@@ -85,7 +89,33 @@ pub fn parse_size(s: &str) -> Result<[u32; 2], String> {
 }
 
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let path = args.deck.unwrap_or_else(super::present::default_deck);
+    let path = args
+        .deck
+        .clone()
+        .unwrap_or_else(super::present::default_deck);
+    if let Some(dir) = &args.web {
+        let started = web_time::Instant::now();
+        let player = super::export_web::find_player()?;
+        let page = super::export_web::export_web(&path, dir, &player)?;
+        let bytes: u64 = (page.files.iter())
+            .filter_map(|f| std::fs::metadata(f).ok())
+            .map(|m| m.len())
+            .sum();
+        eprintln!(
+            "lectern: wrote the web page of {} to {} ({:.1} MB, {:.1} s): open {}",
+            path.display(),
+            dir.display(),
+            bytes as f64 / 1e6,
+            started.elapsed().as_secs_f64(),
+            dir.join("index.html").display()
+        );
+        if args.out.is_none() && args.pdf.is_none() {
+            return report_failures(&page.failures, args.keep_going);
+        }
+        if let Err(e) = report_failures(&page.failures, args.keep_going) {
+            eprintln!("lectern: {e}");
+        }
+    }
     let mut deck = load_deck(&path).map_err(|d| anyhow::anyhow!("{d}"))?;
     let layout = if args.handout {
         Layout::Handout {

@@ -14,8 +14,8 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Context as _;
 
-use crate::app::SlideState;
 use crate::app::tweak_file::TweakFile;
+use crate::app::{SlideState, plot_data};
 use crate::deck::Deck;
 use crate::widgets::Readout;
 
@@ -31,17 +31,13 @@ pub fn write_data(deck: &Deck, dir: &Path, tweaks: &TweakFile) -> anyhow::Result
         state.ensure_widgets(slide);
         // warnings about stale tweaks are printed by the PNG export
         let _ = tweaks.apply(deck, i, &mut state);
-        for (k, (block, _)) in slide.widgets().into_iter().enumerate() {
-            let Some(widget) = state.widget_at(&block) else {
-                continue;
-            };
-            let stem = format!("slide-{:0digits$}-w{}", i + 1, k + 1);
-            let readouts = widget.readouts();
+        for widget in plot_data::slide_data(slide, &mut state) {
+            let stem = format!("slide-{:0digits$}-w{}", i + 1, widget.ordinal);
             let files = [
-                (format!("{stem}.csv"), widget.csv()),
+                (format!("{stem}.csv"), widget.csv),
                 (
                     format!("{stem}-readouts.csv"),
-                    (!readouts.is_empty()).then(|| Readout::to_csv(&readouts)),
+                    (!widget.readouts.is_empty()).then(|| Readout::to_csv(&widget.readouts)),
                 ),
             ];
             for (name, text) in files {

@@ -7,6 +7,7 @@ pub mod export;
 pub mod export_data;
 pub mod export_handout;
 pub mod export_pdf;
+pub mod export_web;
 pub mod inertia;
 pub mod new;
 pub mod present;

@@ -161,6 +161,22 @@ pub fn worker_program() -> Option<PathBuf> {
     (exe.file_stem()? == "lectern").then_some(exe)
 }
 
+/// Every formula asked for while recording (see [`record_requests`]).
+static RECORDED: Mutex<Option<Vec<Request>>> = Mutex::new(None);
+
+/// From now on, remember every formula asked for (`lectern export --web` typesets exactly
+/// those the slides asked for into the page).
+pub fn record_requests() {
+    let mut r = RECORDED.lock().unwrap_or_else(|e| e.into_inner());
+    r.get_or_insert_with(Vec::new);
+}
+
+/// The formulas asked for since [`record_requests`] (and since the last call).
+pub fn take_recorded() -> Vec<Request> {
+    let mut r = RECORDED.lock().unwrap_or_else(|e| e.into_inner());
+    r.as_mut().map(std::mem::take).unwrap_or_default()
+}
+
 pub struct Pool {
     queue: Mutex<Vec<Arc<Job>>>,
     /// Jobs being typeset now.
@@ -213,6 +229,9 @@ impl Pool {
         keep: bool,
         notify: Option<Notify>,
     ) -> Arc<Job> {
+        if let Some(seen) = RECORDED.lock().unwrap_or_else(|e| e.into_inner()).as_mut() {
+            seen.push(req.clone());
+        }
         self.started.get_or_init(|| {
             for i in 0..WORKERS {
                 let _ = std::thread::Builder::new()

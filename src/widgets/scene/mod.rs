@@ -31,6 +31,13 @@ use crate::scene::SceneSim;
 /// adapter a frame of the full school costs a large part of a second.
 const PLAYING_FPS: f64 = 12.0;
 
+/// What the widget says where it has no device to draw on (the web player: the water needs what
+/// WebGL2 lacks, so the scene runs in the desktop app only, for now).
+#[cfg(not(target_arch = "wasm32"))]
+const NO_GPU_NOTE: &str = "the live scene needs the window's GPU";
+#[cfg(target_arch = "wasm32")]
+const NO_GPU_NOTE: &str = "the live water scene runs in the desktop app (lectern present)";
+
 /// Everything a frame depends on: when it is unchanged the texture already holds the frame.
 #[derive(Debug, Clone, PartialEq)]
 struct FrameKey {
@@ -121,7 +128,7 @@ impl SceneWidget {
             None => Ok(PathBuf::from(&spec.scene)),
         };
         let scene_path = crate::bundled::scene_file(resolved, &spec.scene).map(|f| f.path);
-        let started = std::time::Instant::now();
+        let started = web_time::Instant::now();
         let sim = scene_path.clone().and_then(|p| {
             crate::scene::load_scene(&p)
                 .map(SceneSim::new)
@@ -255,7 +262,7 @@ impl SceneWidget {
         if self.drawn.as_ref() == Some(&key) {
             return;
         }
-        let started = std::time::Instant::now();
+        let started = web_time::Instant::now();
         let snap = sim.snapshot();
         let result = gpu.with_renderer(path, &sim.scene, |r| {
             r.render(&sim.scene, &snap, &settings, &out.view, size);
@@ -298,7 +305,7 @@ impl SlideWidget for SceneWidget {
             ui.painter_at(rect).text(
                 rect.center(),
                 egui::Align2::CENTER_CENTER,
-                "the live scene needs the window's GPU",
+                NO_GPU_NOTE,
                 egui::TextStyle::Body.resolve(ui.style()),
                 style::ink(ui),
             );

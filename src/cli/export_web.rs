@@ -1,0 +1,315 @@
+//! `lectern export DECK --web DIR`: the deck as a static web page that pages through the same
+//! slides with every plot live (docs/web.md). DIR gets `index.html` and three classic scripts
+//! (a page opened from `file://` may neither `fetch` nor import modules): `lectern.js`
+//! (wasm-bindgen's `no-modules` glue), `player.js` (the player's wasm, gzipped, as base64) and
+//! `bundle.js` (the [`WebBundle`]: the deck and every file its loading and drawing read,
+//! collected with [`project_files::Recording`], every formula the slides asked for typeset by
+//! the app's own Typst at twice its layout size, and the fonts the slides use).
+//!
+//! The player is `target/web-player/`, made by `scripts/build-player`; export runs that script
+//! (with a progress line) when the player is missing or older than the sources.
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use anyhow::Context as _;
+
+use crate::app::{LecternApp, OffscreenRenderer, SlideOptions};
+use crate::deck::DeckSession;
+use crate::math::{MathStyle, MathSyntax, Request};
+use crate::project_files::{self, Recording};
+use crate::web_bundle::{BundledFile, BundledFormula, FORMAT, WebBundle, bundle_path};
+
+/// The slide size the formulas are laid out at for the page, in pixels (they are typeset at
+/// twice that, so they stay sharp on a high-DPI screen; smaller windows downsample).
+const LAYOUT_WIDTH_PX: u32 = 1280;
+
+/// What `export --web` wrote.
+pub struct WebExport {
+    pub files: Vec<PathBuf>,
+    /// Slides' problems (a formula that failed, a widget that could not load).
+    pub failures: Vec<String>,
+}
+
+/// Writes the page for the deck at `deck_path` into `out`, with the player in `player_dir`.
+pub fn export_web(deck_path: &Path, out: &Path, player_dir: &Path) -> anyhow::Result<WebExport> {
+    let recording = Arc::new(Recording::default());
+    project_files::install(recording.clone()).map_err(anyhow::Error::msg)?;
+    crate::math::pool::record_requests();
+    let deck_real = deck_path
+        .canonicalize()
+        .with_context(|| format!("cannot read {}", deck_path.display()))?;
+    let root = crate::paths::project_root(&deck_real);
+    // What the app reads at start (deck, ink, tweaks), then every slide drawn once: what the
+    // widgets read, and every formula they ask for.
+    let session = DeckSession::open(&deck_real).map_err(|d| anyhow::anyhow!("{d}"))?;
+    let deck = session.deck().clone();
+    let _app = LecternApp::new(session);
+    crate::widgets::work_precision::DETERMINISTIC.store(true, std::sync::atomic::Ordering::Relaxed);
+    let mut renderer = OffscreenRenderer::new()?;
+    let size = [
+        LAYOUT_WIDTH_PX,
+        ((LAYOUT_WIDTH_PX as f32 / deck.aspect.ratio()).round() as u32).clamp(16, 8192),
+    ];
+    let mut failures: Vec<String> = (deck.broken_slides.iter())
+        .map(|b| format!("{} (shown as an error slide)", b.diagnostic))
+        .collect();
+    for (index, slide) in deck.slides.iter().enumerate() {
+        let mut state = crate::app::SlideState::default();
+        renderer.render_slide_with(&deck, index, &mut state, size, SlideOptions::default())?;
+        for problem in state.problems() {
+            failures.push(format!(
+                "{}: slide {} ({:?}): {problem}",
+                deck_path.display(),
+                index + 1,
+                slide.key()
+            ));
+        }
+        let _ = crate::app::plot_data::slide_data(slide, &mut state);
+    }
+    let formulas = typeset_formulas(crate::math::pool::take_recorded())?;
+    let files = bundled_files(&root, &recording.files_read())?;
+    let deck_in_bundle = bundle_path(&root, &deck_real)
+        .ok_or_else(|| anyhow::anyhow!("{} is outside its project folder", deck_real.display()))?;
+    let fonts = (crate::math::slide_fonts().into_iter())
+        .chain(crate::math::fallback_fonts())
+        .map(|(name, bytes)| BundledFile::new(name, bytes))
+        .collect();
+    let bundle = WebBundle {
+        format: FORMAT.into(),
+        deck: deck_in_bundle,
+        files,
+        formulas,
+        fonts,
+    };
+    let written = write_page(out, &deck.title, &bundle, player_dir)?;
+    Ok(WebExport {
+        files: written,
+        failures,
+    })
+}
+
+/// Each formula asked for, once (at the largest size asked), typeset at twice that size.
+fn typeset_formulas(asked: Vec<Request>) -> anyhow::Result<Vec<BundledFormula>> {
+    type Key = (String, MathSyntax, MathStyle, [u8; 4]);
+    let mut largest: HashMap<Key, f32> = HashMap::new();
+    for r in asked {
+        let size = largest
+            .entry((r.src, r.syntax, r.style, r.rgba))
+            .or_insert(0.0);
+        *size = size.max(r.size_px);
+    }
+    let mut keys: Vec<(Key, f32)> = largest.into_iter().collect();
+    keys.sort_by(|a, b| a.0.0.cmp(&b.0.0).then(a.0.3.cmp(&b.0.3)));
+    keys.into_iter()
+        .map(|((src, syntax, style, rgba), size_px)| {
+            let em_px = 2.0 * size_px;
+            let result = crate::math::pool().typeset(Request {
+                src: src.clone(),
+                syntax,
+                style,
+                size_px: em_px,
+                rgba,
+            });
+            BundledFormula::new(&src, syntax, style, rgba, em_px, &result)
+                .map_err(anyhow::Error::msg)
+        })
+        .collect()
+}
+
+/// The files read, by their path under `root`.
+fn bundled_files(root: &Path, read: &[PathBuf]) -> anyhow::Result<Vec<BundledFile>> {
+    let mut out = Vec::new();
+    for path in read {
+        let Some(rel) = bundle_path(root, path) else {
+            eprintln!(
+                "lectern: warning: {} is outside the project folder {}: left out of the page",
+                path.display(),
+                root.display()
+            );
+            continue;
+        };
+        let bytes =
+            std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
+        out.push(BundledFile::new(rel, &bytes));
+    }
+    Ok(out)
+}
+
+fn write_page(
+    out: &Path,
+    title: &str,
+    bundle: &WebBundle,
+    player_dir: &Path,
+) -> anyhow::Result<Vec<PathBuf>> {
+    use base64::Engine as _;
+    std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
+    let read = |name: &str| {
+        let p = player_dir.join(name);
+        std::fs::read(&p).with_context(|| format!("cannot read the web player's {}", p.display()))
+    };
+    let glue = read("lectern.js")?;
+    let wasm = read("lectern_bg.wasm")?;
+    // gzipped: a third of the size, opened by the browser's own DecompressionStream
+    let mut gz = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::best());
+    std::io::Write::write_all(&mut gz, &wasm)?;
+    let wasm_js = format!(
+        "window.LECTERN_WASM_GZ = \"{}\";\n",
+        base64::engine::general_purpose::STANDARD.encode(gz.finish()?)
+    );
+    // the bundle's JSON as one JavaScript string (JSON's string syntax is JavaScript's)
+    let bundle_js = format!(
+        "window.LECTERN_BUNDLE = {};\n",
+        serde_json::to_string(&bundle.to_json())?
+    );
+    let files = [
+        ("index.html", index_html(title).into_bytes()),
+        ("lectern.js", glue),
+        ("player.js", wasm_js.into_bytes()),
+        ("bundle.js", bundle_js.into_bytes()),
+    ];
+    let mut written = Vec::new();
+    for (name, bytes) in files {
+        let file = out.join(name);
+        write_atomic(&file, &bytes)?;
+        written.push(file);
+    }
+    Ok(written)
+}
+
+/// Writes through a temporary file and a rename, so a page is never half-written.
+fn write_atomic(file: &Path, bytes: &[u8]) -> anyhow::Result<()> {
+    let tmp = file.with_extension("lectern-tmp");
+    std::fs::write(&tmp, bytes).with_context(|| format!("cannot write {}", tmp.display()))?;
+    std::fs::rename(&tmp, file).with_context(|| format!("cannot write {}", file.display()))
+}
+
+fn index_html(title: &str) -> String {
+    let title = title
+        .replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;");
+    INDEX_HTML.replace("{title}", &title)
+}
+
+/// Classic scripts only (see the module's doc); the wasm is decoded and started here, and any
+/// failure to start shows as text in `#lectern-error`.
+const INDEX_HTML: &str = r#"<!doctype html>
+<html lang="en">
+<head>
+<meta charset="utf-8">
+<meta name="viewport" content="width=device-width, initial-scale=1">
+<title>{title}</title>
+<link rel="icon" href="data:,">
+<style>
+  html, body { margin: 0; height: 100%; overflow: hidden; background: #101014; }
+  #lectern-canvas { display: block; width: 100%; height: 100%; touch-action: none; }
+  #lectern-loading, #lectern-error { position: absolute; left: 2em; top: 2em; right: 2em;
+    font: 18px/1.5 system-ui, sans-serif; color: #e8e8e8; }
+  #lectern-error { display: none; color: #ffb4a8; white-space: pre-wrap; }
+</style>
+</head>
+<body>
+<canvas id="lectern-canvas"></canvas>
+<div id="lectern-loading">Loading the slides…</div>
+<div id="lectern-error" role="alert"></div>
+<script src="lectern.js"></script>
+<script src="player.js"></script>
+<script src="bundle.js"></script>
+<script>
+(function () {
+  function fail(message) {
+    var box = document.getElementById("lectern-error");
+    box.textContent = "lectern could not show the slides: " + message;
+    box.style.display = "block";
+    document.getElementById("lectern-canvas").style.display = "none";
+    var loading = document.getElementById("lectern-loading");
+    if (loading) loading.remove();
+  }
+  if (typeof wasm_bindgen === "undefined" || typeof window.LECTERN_WASM_GZ !== "string") {
+    fail("the player (lectern.js, player.js) is missing or damaged: export the page again " +
+      "with `lectern export DECK --web DIR`");
+    return;
+  }
+  if (typeof DecompressionStream === "undefined") {
+    fail("this browser is too old for the page (it lacks DecompressionStream)");
+    return;
+  }
+  var text = atob(window.LECTERN_WASM_GZ), gz = new Uint8Array(text.length);
+  for (var i = 0; i < text.length; i++) gz[i] = text.charCodeAt(i);
+  var wasm = new Blob([gz]).stream().pipeThrough(new DecompressionStream("gzip"));
+  new Response(wasm).arrayBuffer()
+    .then(function (bytes) { return wasm_bindgen({ module_or_path: bytes }); })
+    .catch(function (e) { fail(String(e)); });
+})();
+</script>
+</body>
+</html>
+"#;
+
+/// The web player to copy: `$LECTERN_WEB_PLAYER`, else `target/web-player/` of the source tree
+/// this binary was built from, built first by `scripts/build-player` when it is missing or
+/// older than the sources.
+pub fn find_player() -> anyhow::Result<PathBuf> {
+    if let Some(dir) = std::env::var_os("LECTERN_WEB_PLAYER") {
+        return Ok(PathBuf::from(dir));
+    }
+    let tree = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let dir = tree.join("target/web-player");
+    let built = modified(&dir.join("lectern_bg.wasm"));
+    let script = tree.join("scripts/build-player");
+    if !script.is_file() {
+        return match built {
+            Some(_) => Ok(dir),
+            None => anyhow::bail!(
+                "no web player at {} and no source tree to build it from (set LECTERN_WEB_PLAYER)",
+                dir.display()
+            ),
+        };
+    }
+    let sources = newest(&[
+        tree.join("src"),
+        tree.join("Cargo.toml"),
+        tree.join("Cargo.lock"),
+    ]);
+    let fresh = matches!((built, sources), (Some(b), Some(s)) if b >= s);
+    if !fresh {
+        eprintln!(
+            "lectern: building the web player ({}; several minutes the first time)…",
+            if built.is_some() {
+                "older than the sources"
+            } else {
+                "not built yet"
+            }
+        );
+        let status = std::process::Command::new(&script)
+            .current_dir(tree)
+            .status()
+            .with_context(|| format!("cannot run {}", script.display()))?;
+        if !status.success() {
+            anyhow::bail!("{} failed ({status})", script.display());
+        }
+    }
+    Ok(dir)
+}
+
+fn modified(p: &Path) -> Option<std::time::SystemTime> {
+    std::fs::metadata(p).and_then(|m| m.modified()).ok()
+}
+
+/// The newest modification time of the files under `paths`.
+fn newest(paths: &[PathBuf]) -> Option<std::time::SystemTime> {
+    let mut best = None;
+    let mut stack: Vec<PathBuf> = paths.to_vec();
+    while let Some(p) = stack.pop() {
+        if p.is_dir() {
+            if let Ok(entries) = std::fs::read_dir(&p) {
+                stack.extend(entries.flatten().map(|e| e.path()));
+            }
+        } else if let Some(t) = modified(&p) {
+            best = best.max(Some(t));
+        }
+    }
+    best
+}

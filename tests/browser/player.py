@@ -1,0 +1,216 @@
+#!/usr/bin/env python3
+"""Drives the exported web page in Debian's headless Chromium (selenium + chromium-driver,
+software WebGL2 through SwiftShader) and checks what tests/web_player.rs asks, printing one
+JSON object of measurements on the last line. Exit status 0 when every check passed.
+
+Usage: player.py --url URL [--url URL] --shots DIR --euler N --slope N --expect CSV
+       player.py --broken DIR   (a page whose bundle is damaged: expect the readable error)
+"""
+import argparse
+import base64
+import json
+import math
+import sys
+import tempfile
+import time
+
+from selenium import webdriver
+from selenium.webdriver.common.action_chains import ActionChains
+from selenium.webdriver.common.by import By
+from selenium.webdriver.common.keys import Keys
+
+FLAGS = [
+    "--headless=new", "--no-sandbox", "--use-angle=swiftshader", "--enable-unsafe-swiftshader",
+    "--disable-background-networking", "--disable-component-update", "--disable-sync",
+    "--no-first-run", "--hide-scrollbars", "--force-device-scale-factor=1",
+]
+
+
+def browser(size):
+    opts = webdriver.ChromeOptions()
+    opts.binary_location = "/usr/bin/chromium"
+    for f in FLAGS:
+        opts.add_argument(f)
+    opts.add_argument("--user-data-dir=" + tempfile.mkdtemp(prefix="lectern-chromium-"))
+    opts.add_argument("--window-size=%d,%d" % size)
+    opts.set_capability("goog:loggingPrefs", {"browser": "ALL"})
+    service = webdriver.ChromeService(executable_path="/usr/bin/chromedriver")
+    d = webdriver.Chrome(options=opts, service=service)
+    # the window's inner size is what the canvas gets: make it exactly `size`
+    inner = d.execute_script("return [window.innerWidth, window.innerHeight]")
+    outer = d.get_window_size()
+    d.set_window_size(outer["width"] + size[0] - inner[0], outer["height"] + size[1] - inner[1])
+    return d
+
+
+def wait_for(d, script, timeout_s=60.0):
+    start = time.monotonic()
+    while time.monotonic() - start < timeout_s:
+        v = d.execute_script(script)
+        if v:
+            return time.monotonic() - start
+        time.sleep(0.02)
+    raise AssertionError("timed out waiting for: " + script)
+
+
+def canvas_png(d):
+    """The canvas's pixels as the page shows them (PNG bytes, screenshot of the viewport)."""
+    return base64.b64decode(d.get_screenshot_as_base64())
+
+
+def severe(d):
+    return [e for e in d.get_log("browser") if e.get("level") == "SEVERE"]
+
+
+def plot(d):
+    return json.loads(d.execute_script("return window.lectern.plotData()"))
+
+
+def key(d, k):
+    ActionChains(d).send_keys(k).perform()
+
+
+def rows_of_csv(path):
+    with open(path) as f:
+        lines = [l for l in f.read().splitlines() if l]
+    out = []
+    for l in lines[1:]:
+        cells = []
+        for c in l.split(","):
+            try:
+                v = float(c)
+                cells.append(v if math.isfinite(v) else c)
+            except ValueError:
+                cells.append(c)
+        out.append(cells)
+    return lines[0].split(","), out
+
+
+def series_counts(rows):
+    out = {}
+    for r in rows:
+        out[r[0]] = out.get(r[0], 0) + 1
+    return out
+
+
+def same_rows(got, want, tol=1e-12):
+    if len(got) != len(want):
+        return "%d rows in the page %r, %d in export --data %r" % (
+            len(got), series_counts(got), len(want), series_counts(want))
+    for i, (g, w) in enumerate(zip(got, want)):
+        if len(g) != len(w):
+            return "row %d: %r vs %r" % (i, g, w)
+        for a, b in zip(g, w):
+            if isinstance(b, float):
+                if not isinstance(a, (int, float)) or abs(a - b) > tol * max(1.0, abs(b)):
+                    return "row %d: %r vs %r" % (i, g, w)
+            elif a != b:
+                return "row %d: %r vs %r" % (i, g, w)
+    return None
+
+
+def check_page(args, url, size, figures, tag):
+    d = browser(size)
+    try:
+        t0 = time.monotonic()
+        d.get(url)
+        load_s = wait_for(d, "return window.lectern && window.lectern.ready === true")
+        figures[tag + "_load_to_first_slide_s"] = round(time.monotonic() - t0, 3)
+        assert d.execute_script("return window.lectern.slide()") == 1, "not on slide 1"
+        n = d.execute_script("return window.lectern.slides()")
+        assert n >= 13, "only %d slides" % n
+        if args.shots:
+            # compared with export's PNG by the Rust test (tests/web_player.rs)
+            with open("%s/slide1-%s.png" % (args.shots, tag), "wb") as f:
+                f.write(canvas_png(d))
+        canvas = d.find_element(By.ID, "lectern-canvas")
+        t = time.monotonic()
+        key(d, Keys.ARROW_RIGHT)
+        wait_for(d, "return window.lectern.slide() === 2", 10)
+        figures.setdefault(tag + "_key_to_next_slide_ms", round(1e3 * (time.monotonic() - t), 1))
+        assert d.execute_script("return location.hash") == "#/2", "the fragment did not follow"
+        # the fragment opens a slide (a link from a course page)
+        d.execute_script("location.hash = '#/13'")
+        wait_for(d, "return window.lectern.slide() === 13", 10)
+        # typing an equation: N shows the editor under the slide
+        d.execute_script("location.hash = '#/%d'" % args.slope)
+        wait_for(d, "return window.lectern.slide() === %d" % args.slope, 10)
+        key(d, "n")
+        wait_for(d, "return window.lectern.editorField !== null && window.lectern.editorField !== undefined", 10)
+        field = d.execute_script("return window.lectern.editorField")
+        ActionChains(d).move_to_element_with_offset(canvas, 0, 0).perform()
+        ActionChains(d).move_by_offset(field["x"] - size[0] / 2, field["y"] - size[1] / 2).click().perform()
+        # typed before the field has the keyboard, "+" and "-" would change h instead
+        wait_for(d, "return window.lectern.editing === true", 10)
+        # clear the field (End, then Backspace over the file's equation), type, Enter
+        key(d, Keys.END)
+        key(d, Keys.BACKSPACE * 60)
+        key(d, args.equation)
+        key(d, Keys.ENTER)
+        header, want = rows_of_csv(args.expect)
+        deadline = time.monotonic() + 15
+        problem = "no plot data"
+        while time.monotonic() < deadline:
+            got = plot(d)
+            if got is not None and got["columns"] == header:
+                problem = same_rows(got["rows"], want)
+                if problem is None:
+                    break
+            time.sleep(0.1)
+        assert problem is None, "after typing %r: %s" % (args.equation, problem)
+        # + on the Euler slide changes the computed points
+        d.execute_script("location.hash = '#/%d'" % args.euler)
+        wait_for(d, "return window.lectern.slide() === %d" % args.euler, 10)
+        before = plot(d)
+        assert before is not None, "no plot data on the Euler slide"
+        key(d, "+")
+        wait_for(d, "return window.lectern.plotData() !== %s" % json.dumps(json.dumps(before)), 10)
+        errors = severe(d)
+        assert not errors, "console errors: %r" % errors
+    finally:
+        d.quit()
+
+
+def check_broken(args, figures):
+    d = browser((800, 600))
+    try:
+        d.get("file://" + args.broken + "/index.html")
+        wait_for(d, "var e = document.getElementById('lectern-error');"
+                    " return e && e.offsetParent !== null && e.textContent.length > 0", 30)
+        text = d.find_element(By.ID, "lectern-error").text
+        assert "bundle" in text and "export" in text, "unclear error: %r" % text
+        figures["broken_error_text"] = text
+    finally:
+        d.quit()
+
+
+def main():
+    p = argparse.ArgumentParser()
+    p.add_argument("--url", action="append", default=[])
+    p.add_argument("--shots")
+    p.add_argument("--size", default="1280x720")
+    p.add_argument("--euler", type=int)
+    p.add_argument("--slope", type=int)
+    p.add_argument("--equation", default="-2*x + cos(3*t)")
+    p.add_argument("--expect")
+    p.add_argument("--broken")
+    args = p.parse_args()
+    size = tuple(int(v) for v in args.size.split("x"))
+    figures = {}
+    failed = []
+    if args.broken:
+        check_broken(args, figures)
+    for i, url in enumerate(args.url):
+        tag = "file" if url.startswith("file:") else "http"
+        try:
+            check_page(args, url, size, figures, tag)
+        except AssertionError as e:
+            failed.append("%s: %s" % (url, e))
+    for f in failed:
+        print("FAILED " + f, file=sys.stderr)
+    print(json.dumps(figures))
+    sys.exit(1 if failed else 0)
+
+
+if __name__ == "__main__":
+    main()
