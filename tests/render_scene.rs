@@ -665,3 +665,56 @@ fn along_a_line_of_sight_through_the_horizon_every_pixel_below_it_is_water() {
         );
     }
 }
+
+/// The share of an image's pixels that differ from `background` (any channel by more than 3),
+/// and the spread of their luma (p95 − p5, 0–255).
+fn coverage_and_contrast(img: &image::RgbaImage, background: [u8; 3]) -> (f64, f64) {
+    let mut lumas: Vec<f64> = img
+        .pixels()
+        .filter(|p| (0..3).any(|c| p[c].abs_diff(background[c]) > 3))
+        .map(luma)
+        .collect();
+    let covered = lumas.len() as f64 / (img.width() * img.height()) as f64;
+    if lumas.is_empty() {
+        return (0.0, 0.0);
+    }
+    lumas.sort_by(f64::total_cmp);
+    let at = |q: f64| lumas[((lumas.len() - 1) as f64 * q) as usize];
+    (covered, at(0.95) - at(0.05))
+}
+
+/// The debug views fill their panel (a wide one, as on the project slides and in scene mode)
+/// with what they show, and spread it over the grey levels: the shadow map zoomed to its
+/// casters and stretched to their depths, the caustics map cropped to the panel, the normals
+/// coloured on the geometry (the sky, black, is the only background there). The shadow view
+/// of the branch before this (a centred square, mostly the pale "nothing casts" colour)
+/// covered 56 % of its panel with a luma spread of 58 (now ~138); the caustics map 55 %.
+#[test]
+fn debug_views_fill_their_panel_with_contrast() {
+    let mut h = headless(Path::new("shaders"));
+    h.sim.set_time(2.5);
+    // the panel colour of the map views (0.05 linear, sRGB-encoded)
+    let map_background = [63, 63, 63];
+    for (view, background, min_contrast) in [
+        (DebugView::ShadowMap, map_background, 80.0),
+        (DebugView::CausticsMap, map_background, 80.0),
+        // normals are hues at one luma, mostly the water's and the sand's up: coverage only
+        (DebugView::Normals, [0, 0, 0], 0.0),
+    ] {
+        h.settings.debug_view = view;
+        if view == DebugView::Normals {
+            // the draw-call slide's camera: looking down on the scene, a strip of sky on top
+            let c = &mut h.sim.camera;
+            c.target = glam::Vec3::new(0.0, -1.0, 0.0);
+            (c.yaw_deg, c.pitch_deg, c.distance) = (30.0, 40.0, 12.0);
+        }
+        let img = h.render(GOLDEN_SIZE).unwrap();
+        let (covered, contrast) = coverage_and_contrast(&img, background);
+        eprintln!("{view:?}: {covered:.3} of the panel, contrast {contrast:.1}");
+        assert!(covered >= 0.9, "{view:?} covers {covered:.3} of its panel");
+        assert!(
+            contrast > min_contrast,
+            "{view:?}: contrast {contrast:.1} ≤ {min_contrast}"
+        );
+    }
+}

@@ -12,6 +12,7 @@
 //! widget never makes one, so it costs nothing there.
 
 pub mod gpu;
+pub mod legend;
 
 use std::path::{Path, PathBuf};
 
@@ -326,6 +327,7 @@ impl SlideWidget for SceneWidget {
             let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
             ui.painter_at(rect)
                 .image(out.id, rect, uv, egui::Color32::WHITE);
+            legend::legend_ui(ui, rect, debug_view(self.spec.view));
         }
     }
 
