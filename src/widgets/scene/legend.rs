@@ -3,16 +3,17 @@
 
 use crate::render::DebugView;
 
-/// What each colour of a debug view stands for; None for the final image.
+/// What each colour of a debug view stands for; None for the final image. ASCII arrows and
+/// signs: the slide font (Ubuntu Light) has no U+2192 or U+2212.
 pub fn legend_text(view: DebugView) -> Option<&'static str> {
     match view {
         DebugView::None => None,
         DebugView::ShadowMap => Some(
-            "depth from the sun, stretched to the casters' range: near dark → far light · blue: nothing casts",
+            "depth from the sun, stretched to the casters' range: near dark -> far light | blue: nothing casts",
         ),
-        DebugView::Normals => Some("world-space normal as colour: x→R y→G z→B (up is green)"),
+        DebugView::Normals => Some("world-space normal as colour: x->R y->G z->B (up is green)"),
         DebugView::EnvCube => Some(
-            "sky cube: −x +z +x −z across, +y above, −y below · strip: mips, rougher to the right",
+            "sky cube: -x +z +x -z across, +y above, -y below | strip: mips, rougher to the right",
         ),
         DebugView::CausticsMap => Some(
             "light the waves focus on the floor, seen from above: grey = flat water, white = focused",
