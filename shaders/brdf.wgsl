@@ -58,7 +58,7 @@ fn env_brdf_approx(f0: vec3f, roughness: f32, n_dot_v: f32) -> vec3f {
 
 fn env_radiance(dir: vec3f, roughness: f32) -> vec3f {
     let mips = g.env_mip_count;
-    return textureSampleLevel(env_cube, env_sampler, dir, roughness * (mips - 1.0)).rgb;
+    return hdr_load(textureSampleLevel(env_cube, env_sampler, dir, roughness * (mips - 1.0)).rgb);
 }
 
 // Outgoing radiance towards v from a surface lit by the sun and the sky cube map.

@@ -21,6 +21,7 @@
 // constant loop bound: lavapipe compiles a variant per uniform-bound loop, see
 // docs/benchmarks/scene.md), then takes the Jacobian by forward differences.
 //!include common.wgsl
+//!include encoding.wgsl
 //!include fullscreen.wgsl
 
 // fixed-point steps from the flat-water guess to the rest point whose ray lands on the texel
@@ -67,5 +68,5 @@ fn fs_caustics(in: FullscreenOut) -> @location(0) vec4f {
     let dz = entry_and_landing(rest + vec2f(0.0, e), floor_y, texel_m) - a;
     let entry_area = abs(cross2(dx.xy, dz.xy));
     let landing_area = max(abs(cross2(dx.zw, dz.zw)), entry_area / MAX_INTENSITY);
-    return vec4f(entry_area / landing_area, 0.0, 0.0, 1.0);
+    return vec4f(caustics_store(entry_area / landing_area), 0.0, 0.0, 1.0);
 }

@@ -189,7 +189,7 @@ fn caustics_light(world_pos: vec3f) -> f32 {
     let ray = refract(-g.sun_dir, vec3f(0.0, 1.0, 0.0), ETA_AIR_OVER_WATER);
     let xz = world_pos.xz + ray.xz * (g.caustics_depth_m - depth) / max(-ray.y, 0.05);
     let uv = xz / (2.0 * max(g.caustics_half_extent_m, 1e-3)) + 0.5;
-    let focused = textureSampleLevel(caustics_map, caustics_sampler, uv, 0.0).r;
+    let focused = caustics_load(textureSampleLevel(caustics_map, caustics_sampler, uv, 0.0).r);
     let edge = max(abs(uv.x * 2.0 - 1.0), abs(uv.y * 2.0 - 1.0));
     let inside = 1.0 - smoothstep(0.85, 1.0, edge);
     let depth_fade = clamp(depth / max(g.caustics_depth_m, 1e-3), 0.0, 1.0);
@@ -227,7 +227,8 @@ fn water_path(path_m: f32, depth0_m: f32, descent_per_m: f32) -> WaterPath {
     return WaterPath(transmittance, g.scatter_color * light * above * gathered);
 }
 
-// What the opaque passes write: linear colour, and in alpha the distance from the eye (metres).
+// What the opaque passes write: linear colour, and in alpha the distance from the eye (metres;
+// both as encoding.wgsl stores them).
 // The water pass reads that distance from this colour target, never from the depth attachment
 // it tests against (sampling an attached depth texture is not allowed on WebGL2/GLES). With the
 // eye under water the path to the point is fogged here, the water surface not being in between.
@@ -239,5 +240,6 @@ fn opaque_out(color: vec3f, world_pos: vec3f) -> vec4f {
     // a factor, not an `if` on the uniforms: lavapipe (Mesa 22.3) compiles and keeps a shader
     // variant per draw for a branch they decide (+1.4 MB a frame here; docs/benchmarks/scene.md)
     let under = f32(eye_depth > 0.0) * f32(g.debug_view != DEBUG_NORMALS);
-    return vec4f(mix(color, color * w.transmittance + w.inscatter, under), dist);
+    let shown = mix(color, color * w.transmittance + w.inscatter, under);
+    return vec4f(hdr_store(shown), dist_store(dist, g.near_m, g.far_m));
 }

@@ -8,6 +8,7 @@
 //!include fullscreen.wgsl
 //!include aces.wgsl
 //!include srgb.wgsl
+//!include encoding.wgsl
 
 // `PostParams` in src/render/tonemap.rs
 struct Post {
@@ -20,7 +21,9 @@ struct Post {
 }
 
 @group(0) @binding(0) var<uniform> post: Post;
-@group(0) @binding(1) var shadow_map: texture_depth_2d;
+// the shadow map's depths read as plain floats: GLSL (WebGL2, GL) has no `textureLoad` of a
+// depth texture, and its shadow samplers only compare (wgpu #4524)
+@group(0) @binding(1) var shadow_map: texture_2d<f32>;
 @group(0) @binding(2) var env_cube: texture_cube<f32>;
 @group(0) @binding(3) var env_sampler: sampler;
 @group(0) @binding(4) var caustics_map: texture_2d<f32>;
@@ -58,7 +61,7 @@ fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
         let window = select(vec2f(1.0, 1.0 / aspect), vec2f(aspect, 1.0), aspect < 1.0);
         let uv = 0.5 + (p - 0.5) * window;
         // focusing factor: 1 (flat water) mid grey, the bright folds white
-        let focus = textureSampleLevel(caustics_map, env_sampler, uv, 0.0).r;
+        let focus = caustics_load(textureSampleLevel(caustics_map, env_sampler, uv, 0.0).r);
         return to_target(aces(vec3f(0.2 * focus)));
     }
     if (post.debug_view == 1u) {
@@ -73,7 +76,7 @@ fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
         for (var j = 0; j < 16; j++) {
             for (var i = 0; i < 16; i++) {
                 let uv = (vec2f(f32(i), f32(j)) + 0.5) / 16.0;
-                let s = textureLoad(shadow_map, vec2i(uv * size), 0);
+                let s = textureLoad(shadow_map, vec2i(uv * size), 0).r;
                 if (s < 0.9999) {
                     lo = min(lo, s);
                     hi = max(hi, s);
@@ -96,7 +99,7 @@ fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
                                centre - 0.5 * window, window > vec2f(1.0));
         let uv = window_lo + p * window;
         let on_map = all(uv >= vec2f(0.0)) && all(uv <= vec2f(1.0));
-        let d = textureLoad(shadow_map, vec2i(clamp(uv, vec2f(0.0), vec2f(1.0)) * (size - 1.0)), 0);
+        let d = textureLoad(shadow_map, vec2i(clamp(uv, vec2f(0.0), vec2f(1.0)) * (size - 1.0)), 0).r;
         if (d >= 0.9999 || !on_map) {
             // nothing casts here: a deep blue, off the grey ramp, so the casters stand out
             // against it (a pale one left the view a near-uniform sheet)
@@ -121,7 +124,7 @@ fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
     }
     if (face >= 0) {
         let d = normalize(cross_dir(face, fract(c)));
-        return to_target(aces(textureSampleLevel(env_cube, env_sampler, d, 0.0).rgb));
+        return to_target(aces(hdr_load(textureSampleLevel(env_cube, env_sampler, d, 0.0).rgb)));
     }
     // the mip strip: the +x…−z equator seen at increasing roughness, one band per mip
     let mips = post.env_mip_count;
@@ -131,7 +134,7 @@ fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
         let mip = floor(t * mips);
         let yaw = c.x / 4.0 * 6.2831853;
         let d = vec3f(cos(yaw), 0.15, sin(yaw));
-        return to_target(aces(textureSampleLevel(env_cube, env_sampler, d, mip).rgb));
+        return to_target(aces(hdr_load(textureSampleLevel(env_cube, env_sampler, d, mip).rgb)));
     }
     return to_target(vec3f(0.05));
 }

@@ -4,6 +4,7 @@
 // towards the tail (carangiform swimming; Lighthill 1960 elongated-body theory). Shaded with
 // the Cook–Torrance BRDF and a procedural scale normal map.
 //!include common.wgsl
+//!include encoding.wgsl
 //!include brdf.wgsl
 
 @group(1) @binding(0) var<uniform> material: MaterialParams;

@@ -3,6 +3,7 @@
 // (Blinn 1978 bump mapping; Mikkelsen 2008 tangent frames) and the Cook–Torrance BRDF of
 // brdf.wgsl with sun shadows (Williams 1978 shadow maps; Reeves et al. 1987 PCF).
 //!include common.wgsl
+//!include encoding.wgsl
 //!include brdf.wgsl
 
 // `ObjectGpu` in src/render/pbr.rs

@@ -5,6 +5,7 @@
 
 //!include fullscreen.wgsl
 //!include cube_face.wgsl
+//!include encoding.wgsl
 
 // `PrefilterParams` in src/render/sky.rs
 struct Params {
@@ -64,9 +65,9 @@ fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
         let l = normalize(2.0 * dot(n, h) * h - n);
         let n_dot_l = dot(n, l);
         if (n_dot_l > 0.0) {
-            sum += min(textureSampleLevel(src_cube, src_sampler, l, 0.0).rgb, limit) * n_dot_l;
+            sum += min(hdr_load(textureSampleLevel(src_cube, src_sampler, l, 0.0).rgb), limit) * n_dot_l;
             weight += n_dot_l;
         }
     }
-    return vec4f(sum / max(weight, 1e-4), 1.0);
+    return vec4f(hdr_store(sum / max(weight, 1e-4)), 1.0);
 }

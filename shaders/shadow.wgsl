@@ -5,6 +5,7 @@
 // a small normal offset at lookup; lookup with PCF (Reeves, Salesin, Cook 1987) is
 // `sun_visibility` in common.wgsl.
 //!include common.wgsl
+//!include encoding.wgsl
 
 // `ObjectGpu` in src/render/pbr.rs
 struct Object {

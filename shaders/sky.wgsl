@@ -11,6 +11,7 @@
 // cube leaves it out, so reflections see the sky and the water's and materials' reflection of
 // the sun is their specular lobe from the light alone (nothing counted twice).
 //!include common.wgsl
+//!include encoding.wgsl
 //!include fullscreen.wgsl
 //!include cube_face.wgsl
 
@@ -102,7 +103,7 @@ fn sun_disc(d: vec3f, s: vec3f, cos_radius: f32, radiance: vec3f, px_rad: f32) -
 
 @fragment
 fn fs_cube_face(in: FullscreenOut) -> @location(0) vec4f {
-    return vec4f(sky_radiance(face_dir(sky.face.x, in.ndc)), 1.0);
+    return vec4f(hdr_store(sky_radiance(face_dir(sky.face.x, in.ndc))), 1.0);
 }
 
 // Background: the depth test (LessEqual at depth 1) keeps it behind everything. Alpha holds the
@@ -112,11 +113,11 @@ fn fs_background(in: FullscreenOut) -> @location(0) vec4f {
     let far = g.world_from_clip * vec4f(in.ndc, 1.0, 1.0);
     let dir = normalize(far.xyz / far.w - g.eye_m);
     if (g.debug_view == DEBUG_NORMALS) {
-        return vec4f(0.0, 0.0, 0.0, g.far_m);
+        return vec4f(0.0, 0.0, 0.0, dist_store(g.far_m, g.near_m, g.far_m));
     }
     var c: vec3f;
     if (on(g.env_map_on)) {
-        c = textureSampleLevel(env_cube, env_sampler, dir, 0.0).rgb
+        c = hdr_load(textureSampleLevel(env_cube, env_sampler, dir, 0.0).rgb)
             + sun_disc(dir, g.sun_dir, g.sun_cos_radius, g.sun_disc_radiance, g.rad_per_px);
     } else {
         // no environment: nothing to see or reflect but a flat grey (the "off" picture)

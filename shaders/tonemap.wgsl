@@ -9,6 +9,7 @@
 //!include aces.wgsl
 //!include srgb.wgsl
 //!include fxaa.wgsl
+//!include encoding.wgsl
 
 // `PostParams` in src/render/tonemap.rs
 struct Post {
@@ -27,14 +28,14 @@ struct Post {
 
 // The display colour of the HDR image at `uv` (what fxaa.wgsl blends).
 fn display_at(uv: vec2f) -> vec3f {
-    return aces(textureSampleLevel(hdr, hdr_sampler, uv, 0.0).rgb * post.exposure);
+    return aces(hdr_load(textureSampleLevel(hdr, hdr_sampler, uv, 0.0).rgb) * post.exposure);
 }
 
 @fragment
 fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
     if (post.debug_view == 2u) {
         // normals are encoded 0..1 in sRGB-ish display space; undo the target's encoding
-        let c = textureSampleLevel(hdr, hdr_sampler, in.uv, 0.0).rgb;
+        let c = hdr_load(textureSampleLevel(hdr, hdr_sampler, in.uv, 0.0).rgb);
         return to_target(pow(c, vec3f(2.2)));
     }
     if (FXAA_ON) {

@@ -10,6 +10,7 @@
 // (Walter et al. 2007) widened by the normal's variance over the pixel (Kaplanyan et al. 2016,
 // "Stable specular highlights"), so it does not sparkle.
 //!include common.wgsl
+//!include encoding.wgsl
 
 // the opaque colour, its alpha the distance from the eye (`opaque_out`), and a sampler
 @group(1) @binding(0) var scene_color: texture_2d<f32>;
@@ -71,8 +72,8 @@ fn vs_main(@location(0) grid_ndc: vec2f) -> VertexOut {
 fn below_at(uv: vec2f) -> vec4f {
     let size = vec2f(textureDimensions(scene_color));
     let texel = vec2i(clamp(uv * size, vec2f(0.0), size - 1.0));
-    let dist = textureLoad(scene_color, texel, 0).a;
-    return vec4f(textureSampleLevel(scene_color, screen_sampler, uv, 0.0).rgb, dist);
+    let dist = dist_load(textureLoad(scene_color, texel, 0).a, g.near_m, g.far_m);
+    return vec4f(hdr_load(textureSampleLevel(scene_color, screen_sampler, uv, 0.0).rgb), dist);
 }
 
 // Screen uv of a world point.
@@ -83,7 +84,7 @@ fn uv_of(p: vec3f) -> vec2f {
 }
 
 fn sky_along(dir: vec3f) -> vec3f {
-    let sky = min(textureSampleLevel(env_cube, env_sampler, dir, 0.0).rgb, vec3f(20.0));
+    let sky = min(hdr_load(textureSampleLevel(env_cube, env_sampler, dir, 0.0).rgb), vec3f(20.0));
     return mix(ENV_OFF_RADIANCE, sky, f32(g.env_map_on));
 }
 
@@ -94,7 +95,7 @@ fn sky_along(dir: vec3f) -> vec3f {
 // benchmarks/scene.md).
 fn with_normals_view(color: vec3f, n: vec3f, below: vec3f) -> vec4f {
     let normals = mix(below, n * 0.5 + 0.5, 0.3);
-    return vec4f(mix(color, normals, f32(g.debug_view == DEBUG_NORMALS)), 1.0);
+    return vec4f(hdr_store(mix(color, normals, f32(g.debug_view == DEBUG_NORMALS))), 1.0);
 }
 
 // GGX glint of the sun off the surface, its roughness widened by the normal's variance over

@@ -221,13 +221,13 @@ fn hot_reload_keeps_the_old_pipeline_on_error_and_swaps_in_the_fix() {
     );
 }
 
-#[test]
-fn golden_images_of_the_default_scene_and_debug_views() {
-    let mut h = headless(Path::new("shaders"));
+/// The golden frames (name, image) of `h` (caustics off): two times, each debug view, and
+/// one with caustics on.
+fn golden_frames(h: &mut Headless) -> Vec<(String, image::RgbaImage)> {
+    let mut out = Vec::new();
     for t in [0.0, 2.5] {
         h.sim.set_time(t);
-        let img = h.render(GOLDEN_SIZE).unwrap();
-        golden(&format!("t{t}"), &img);
+        out.push((format!("t{t}"), h.render(GOLDEN_SIZE).unwrap()));
     }
     h.sim.set_time(2.5);
     for (view, name) in [
@@ -237,13 +237,45 @@ fn golden_images_of_the_default_scene_and_debug_views() {
         (DebugView::CausticsMap, "caustics-map"),
     ] {
         h.settings.debug_view = view;
-        let img = h.render(GOLDEN_SIZE).unwrap();
-        golden(name, &img);
+        out.push((name.to_owned(), h.render(GOLDEN_SIZE).unwrap()));
     }
     h.settings.debug_view = DebugView::None;
     h.settings.caustics = true;
-    let img = h.render(GOLDEN_SIZE).unwrap();
-    golden("caustics-t2.5", &img);
+    out.push(("caustics-t2.5".to_owned(), h.render(GOLDEN_SIZE).unwrap()));
+    out
+}
+
+#[test]
+fn golden_images_of_the_default_scene_and_debug_views() {
+    let mut h = headless(Path::new("shaders"));
+    for (name, img) in golden_frames(&mut h) {
+        golden(&name, &img);
+    }
+}
+
+/// The same frames on the GL backend (`WGPU_BACKEND=gl`, llvmpipe's GL in CI: the stand-in
+/// for WebGL2's GLSL) within the goldens' tolerance of the committed (Vulkan) ones.
+#[test]
+fn the_gl_backend_draws_the_goldens_within_their_tolerance() {
+    let s = scene::load_scene(Path::new(scene::DEFAULT_SCENE)).unwrap();
+    let Some(mut h) = common::gl_headless("render_scene", s, Path::new("shaders")) else {
+        return;
+    };
+    h.settings.caustics = false;
+    let mut failed = Vec::new();
+    for (name, img) in golden_frames(&mut h) {
+        let path = format!("tests/snapshots/scene-{name}.png");
+        let want = image::open(&path).unwrap().to_rgba8();
+        let failing = common::scene_failing_pixels(&want, &img);
+        if failing > common::scene_max_failed_pixels(&want) {
+            img.save(format!("target/gl-scene-{name}.png")).unwrap();
+            failed.push(format!("{name}: {failing} pixels"));
+        }
+    }
+    assert!(
+        failed.is_empty(),
+        "GL differs from the goldens (target/gl-scene-*.png): {failed:?}"
+    );
 }
 
 /// The lower half of a frame from the default camera: seabed seen through the water (with

@@ -59,7 +59,14 @@ fn headless_frame(spec: &SceneSpec, size: (u32, u32)) -> image::RgbaImage {
 /// The widget drawn alone, filling a 640×360 image at one pixel per point, through the same
 /// offscreen path as `lectern export`.
 fn widget_frame(spec: &SceneSpec, size: (u32, u32)) -> image::RgbaImage {
-    let mut off = OffscreenRenderer::software_first().unwrap();
+    widget_frame_on(OffscreenRenderer::software_first().unwrap(), spec, size)
+}
+
+fn widget_frame_on(
+    mut off: OffscreenRenderer,
+    spec: &SceneSpec,
+    size: (u32, u32),
+) -> image::RgbaImage {
     let mut w = SceneWidget::new_in(spec.clone(), Some(&root().join("slides")));
     let img = off
         .render([size.0, size.1], 1.0, |ui| {
@@ -91,6 +98,36 @@ fn the_slide_shows_the_same_pixels_as_render_scene() {
     on.toggles.normal_maps = Some(true);
     let (same, failing) = within_tolerance(&got, &headless_frame(&on, size));
     assert!(!same, "normal maps on must differ: {failing} pixels fail");
+}
+
+/// The widget on the GL backend (egui's GL device has WebGL2's limits) against render-scene on
+/// the default adapter (Vulkan's lavapipe in CI), within the goldens' tolerance.
+#[test]
+fn on_the_gl_backend_the_slide_shows_the_same_pixels_too() {
+    let off = match OffscreenRenderer::software_first_on(wgpu::Backends::GL) {
+        Ok(off) => off,
+        Err(e) => {
+            eprintln!("\n!!!!! scene_slide: SKIPPING THE GL CASE: no GL adapter ({e}) !!!!!\n");
+            return;
+        }
+    };
+    assert!(
+        off.adapter_name().starts_with("Gl"),
+        "{}",
+        off.adapter_name()
+    );
+    let size = (640, 360);
+    let s = spec();
+    let got = widget_frame_on(off, &s, size);
+    let want = headless_frame(&s, size);
+    let (ok, failing) = within_tolerance(&got, &want);
+    if !ok {
+        got.save("target/scene-slide-widget-gl.png").unwrap();
+    }
+    assert!(
+        ok,
+        "{failing} pixels fail (target/scene-slide-widget-gl.png)"
+    );
 }
 
 #[test]

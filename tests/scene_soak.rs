@@ -14,6 +14,8 @@ use lectern::render::{Headless, shaders};
 use lectern::scene;
 use lectern::scene::quality::LADDER;
 
+mod common;
+
 const SIZE: (u32, u32) = (320, 180);
 /// Frames drawn with nothing reloaded (a reload frees what a pipeline kept, so a per-frame
 /// leak hides behind frequent reloads), then frames with reloads.
@@ -54,6 +56,17 @@ fn live_objects(device: &wgpu::Device) -> Vec<(&'static str, isize)> {
 
 #[test]
 fn gpu_objects_and_memory_stay_flat_over_frames_and_reloads() {
+    soak(|scene, shaders| Some(Headless::new(scene, shaders).unwrap()));
+}
+
+/// The same lecture on the GL backend (llvmpipe's GL; the stand-in for WebGL2).
+#[test]
+fn on_the_gl_backend_too() {
+    soak(|scene, shaders| common::gl_headless("scene_soak", scene, shaders));
+}
+
+/// Runs the soak on the renderer `make` builds (None: skipped, `make` said why).
+fn soak(make: impl FnOnce(scene::Scene, &Path) -> Option<Headless>) {
     let dir = tempfile::tempdir().unwrap();
     let shader_dir = dir.path().join("shaders");
     std::fs::create_dir(&shader_dir).unwrap();
@@ -63,7 +76,9 @@ fn gpu_objects_and_memory_stay_flat_over_frames_and_reloads() {
     let text = std::fs::read_to_string(scene::DEFAULT_SCENE).unwrap();
     let file = Path::new(scene::DEFAULT_SCENE);
     let original = scene::parse_scene(&text, file).unwrap();
-    let mut h = Headless::new(original.clone(), &shader_dir).unwrap();
+    let Some(mut h) = make(original.clone(), &shader_dir) else {
+        return;
+    };
     let water = shader_dir.join("water.wgsl");
     let water_text = std::fs::read_to_string(&water).unwrap();
 

@@ -27,7 +27,6 @@ use crate::reload::Reloaded;
 /// finish a save (write, rename) within a few milliseconds; 150 ms made a save take ~300 ms to
 /// reach the screen. An empty file mid-save is skipped anyway, and a half-written one shows
 /// its error only until the rest of the save arrives a tick later.
-pub const RELOAD_DEBOUNCE: Duration = Duration::from_millis(50);
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Mode {
@@ -143,7 +142,7 @@ impl LecternApp {
         let ctx = ctx.clone();
         if let Err(e) = self
             .session
-            .watch(RELOAD_DEBOUNCE, move || ctx.request_repaint())
+            .watch(crate::reload::DEBOUNCE, move || ctx.request_repaint())
         {
             tracing::warn!("hot reload is off: {e}");
         }

@@ -30,6 +30,25 @@ pub enum OffscreenError {
     Gpu(String),
 }
 
+/// How much an adapter is preferred (smaller first): a GPU before a software rasteriser (or
+/// after, `software_first`), and Vulkan, Metal or DX12 before GL, which is the fallback where
+/// nothing else runs (a VM or lecture-room PC with OpenGL only). The window's choice too.
+pub fn adapter_rank(info: &wgpu::AdapterInfo, software_first: bool) -> (i32, i32) {
+    let device = match info.device_type {
+        wgpu::DeviceType::DiscreteGpu => 0,
+        wgpu::DeviceType::IntegratedGpu => 1,
+        wgpu::DeviceType::VirtualGpu | wgpu::DeviceType::Other => 2,
+        wgpu::DeviceType::Cpu if software_first => -1,
+        wgpu::DeviceType::Cpu => 3,
+    };
+    let backend = match info.backend {
+        wgpu::Backend::Vulkan | wgpu::Backend::Metal | wgpu::Backend::Dx12 => 0,
+        wgpu::Backend::Gl => 1,
+        _ => 2,
+    };
+    (device, backend)
+}
+
 /// An egui context and a wgpu device for drawing UIs to images. Keep one for many images:
 /// fonts, textures and widget memory are reused.
 pub struct OffscreenRenderer {
@@ -40,41 +59,36 @@ pub struct OffscreenRenderer {
 impl OffscreenRenderer {
     /// Finds an adapter: a real GPU if there is one, else a software one.
     pub fn new() -> Result<Self, OffscreenError> {
-        Self::with_preference(false)
+        Self::with_preference(false, None)
     }
 
     /// Prefers a software adapter even when a GPU exists: bit-stable images for snapshot tests.
     pub fn software_first() -> Result<Self, OffscreenError> {
-        Self::with_preference(true)
+        Self::with_preference(true, None)
     }
 
-    fn with_preference(software_first: bool) -> Result<Self, OffscreenError> {
+    /// As [`Self::software_first`], on `backends` only (tests run the GL backend this way).
+    pub fn software_first_on(backends: wgpu::Backends) -> Result<Self, OffscreenError> {
+        Self::with_preference(true, Some(backends))
+    }
+
+    fn with_preference(
+        software_first: bool,
+        backends: Option<wgpu::Backends>,
+    ) -> Result<Self, OffscreenError> {
         let mut setup = egui_wgpu::WgpuSetupCreateNew::without_display_handle();
+        if let Some(b) = backends {
+            setup.instance_descriptor.backends = b;
+        }
         setup
             .instance_descriptor
             .backends
             .remove(wgpu::Backends::BROWSER_WEBGPU);
         setup.native_adapter_selector = Some(Arc::new(move |adapters, _surface| {
-            let rank = |a: &wgpu::Adapter| {
-                let info = a.get_info();
-                let device = match info.device_type {
-                    wgpu::DeviceType::DiscreteGpu => 0,
-                    wgpu::DeviceType::IntegratedGpu => 1,
-                    wgpu::DeviceType::VirtualGpu | wgpu::DeviceType::Other => 2,
-                    wgpu::DeviceType::Cpu if software_first => -1,
-                    wgpu::DeviceType::Cpu => 3,
-                };
-                let backend = match info.backend {
-                    wgpu::Backend::Vulkan | wgpu::Backend::Metal | wgpu::Backend::Dx12 => 0,
-                    wgpu::Backend::Gl => 1,
-                    _ => 2,
-                };
-                (device, backend)
-            };
             adapters
                 .iter()
                 .filter(|a| a.get_info().backend != wgpu::Backend::Noop)
-                .min_by_key(|a| rank(a))
+                .min_by_key(|a| adapter_rank(&a.get_info(), software_first))
                 .cloned()
                 .ok_or_else(|| "no adapter found".to_owned())
         }));

@@ -8,14 +8,15 @@
 
 use std::collections::VecDeque;
 use std::path::{Path, PathBuf};
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use anyhow::Result;
 
-use crate::reload::{DirWatcher, LiveFile, Reloaded};
+use crate::reload::{LiveFile, Reloaded};
 use crate::render::gpu::UncapturedErrors;
-use crate::render::{OutputDraw, RenderSettings, Renderer};
+use crate::render::{OutputDraw, RenderSettings};
 use crate::scene::{self, FrameSnapshot, QualityController, Scene, SceneSim};
+use crate::widgets::scene::host::SceneHost;
 
 /// The scene's output drawn inside egui's render pass, over the rect it was added for.
 struct SceneOutput(OutputDraw);
@@ -33,11 +34,11 @@ impl egui_wgpu::CallbackTrait for SceneOutput {
 }
 
 pub struct SceneMode {
-    pub(super) renderer: Renderer,
+    /// the renderer and the watched shader and scene folders (shared with the Scene widget's)
+    pub(super) host: SceneHost,
     pub(super) sim: SceneSim,
     /// the scene file, last good version and newest error
     scene_file: LiveFile<Scene>,
-    watcher: Option<DirWatcher>,
     device_errors: UncapturedErrors,
     pub settings: RenderSettings,
     pub(super) quality: QualityController,
@@ -66,33 +67,26 @@ impl SceneMode {
         scene_path: &Path,
         wake: impl Fn() + Send + 'static,
     ) -> Result<Self> {
-        let shader_dir = crate::bundled::shader_folder_for_scene(scene_path)
-            .map_err(anyhow::Error::msg)?
-            .dir;
         let scene_file = LiveFile::open(scene_path, scene::parse_scene);
         let scene = match (scene_file.value(), scene_file.error()) {
             (Some(s), _) => s.clone(),
             (None, Some(d)) => return Err(d.clone().into()),
             (None, None) => anyhow::bail!("{}: no scene", scene_path.display()),
         };
-        let renderer = Renderer::new(
-            &render_state.device,
-            &render_state.queue,
-            &shader_dir,
+        let host = SceneHost::new(
+            render_state,
+            scene_path,
             &scene,
             // the output is drawn into egui's pass over the window
             render_state.target_format,
-        )?;
-        let scenes_dir = scene_path.parent().unwrap_or(Path::new("."));
-        let watcher = DirWatcher::new(&[&shader_dir, scenes_dir], Duration::from_millis(80), wake)
-            .map_err(|e| tracing::warn!("not watching shaders/scenes: {e}"))
-            .ok();
+            Some(Box::new(wake)),
+        )
+        .map_err(anyhow::Error::msg)?;
         Ok(Self {
-            renderer,
+            host,
             quality: QualityController::new(scene.quality),
             sim: SceneSim::new(scene),
             scene_file,
-            watcher,
             device_errors: UncapturedErrors::install(&render_state.device),
             settings: RenderSettings::default(),
             paused: false,
@@ -113,29 +107,25 @@ impl SceneMode {
     /// Applies file changes: shaders rebuild (old pipelines kept on error), the scene reloads
     /// through its [`LiveFile`] (last good kept on error; camera and time kept on success).
     fn poll_reload(&mut self) {
-        let Some(w) = &self.watcher else { return };
-        let changed = w.poll();
-        if changed.is_empty() {
-            return;
+        // the host has applied the shaders among them
+        let changed = self.host.poll();
+        if !changed.is_empty() {
+            self.apply_scene_changes(&changed);
         }
-        self.apply_changes(&changed);
     }
 
     /// What a batch of changed paths does (public for tests that drive reloads directly).
     pub fn apply_changes(&mut self, changed: &[PathBuf]) {
-        let shaders: Vec<PathBuf> = changed
-            .iter()
-            .filter(|p| p.extension().is_some_and(|e| e == "wgsl"))
-            .cloned()
-            .collect();
-        if !shaders.is_empty() {
-            self.renderer.reload_shaders(&shaders);
-        }
+        self.host.apply_shaders(changed);
+        self.apply_scene_changes(changed);
+    }
+
+    fn apply_scene_changes(&mut self, changed: &[PathBuf]) {
         if self.scene_file.on_changes(changed) == Reloaded::Updated
             && let Some(s) = self.scene_file.value()
         {
             let s = s.clone();
-            self.renderer.set_scene(&s);
+            self.host.renderer.set_scene(&s);
             self.quality.set_mode(s.quality);
             self.sim.replace_scene(s);
         }
@@ -149,7 +139,13 @@ impl SceneMode {
             .iter()
             .map(|d| d.to_string())
             .collect();
-        v.extend(self.renderer.shader_errors().iter().map(|d| d.to_string()));
+        v.extend(
+            self.host
+                .renderer
+                .shader_errors()
+                .iter()
+                .map(|d| d.to_string()),
+        );
         v
     }
 
@@ -227,10 +223,11 @@ impl SceneMode {
         let snap = self.snapshot.get_or_insert_with(|| self.sim.snapshot());
         self.sim.snapshot_into(snap);
         let enc = self
+            .host
             .renderer
             .encode_scene(&self.sim.scene, snap, &self.settings, size);
         render_state.queue.submit([enc.finish()]);
-        if let Some(output) = self.renderer.output(&self.settings) {
+        if let Some(output) = self.host.renderer.output(&self.settings) {
             ui.painter().add(egui_wgpu::Callback::new_paint_callback(
                 rect,
                 SceneOutput(output),
@@ -262,7 +259,7 @@ impl SceneMode {
             painter.circle_filled(at, 2.5, egui::Color32::YELLOW);
         }
         if self.show_frame_time {
-            let info = self.renderer.frame_info();
+            let info = self.host.renderer.frame_info();
             let text = format!(
                 "frame {:.1} ms · render CPU {:.1} ms · {}×{} px · t = {:.2} s · {} fish · {}",
                 mean(&self.interval_ms),

@@ -12,6 +12,8 @@ impl SceneMode {
     /// The teaching panel: technique toggles, debug views, material and wave sliders, fish
     /// count, time control, frame-time readout.
     pub fn controls_ui(&mut self, ui: &mut egui::Ui) {
+        // which backend draws (the GL fallback looks the same; its frame times do not)
+        ui.label(egui::RichText::new(self.host.backend_line()).small().weak());
         let s = &mut self.settings;
         ui.heading("Techniques");
         ui.checkbox(&mut s.env_map, "environment map (sky reflections)");
@@ -203,7 +205,7 @@ impl SceneMode {
 
     /// The quality in use: automatic (budget, the rung and what it means) or fixed by the file.
     fn quality_ui(&mut self, ui: &mut egui::Ui) {
-        let info = self.renderer.frame_info();
+        let info = self.host.renderer.frame_info();
         let rung = self.quality.settings();
         let what = match self.quality.mode() {
             Quality::Auto { budget_ms } => format!(

@@ -77,9 +77,24 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         .with_inner_size([1280.0, 720.0])
         .with_min_inner_size([320.0, 180.0])
         .with_fullscreen(args.fullscreen);
+    // Vulkan (Metal, DX12) where the machine has it, else GL (`WGPU_BACKEND` still narrows it)
+    let mut setup = egui_wgpu::WgpuSetupCreateNew::without_display_handle();
+    setup.native_adapter_selector = Some(std::sync::Arc::new(|adapters, surface| {
+        adapters
+            .iter()
+            .filter(|a| a.get_info().backend != wgpu::Backend::Noop)
+            .filter(|a| surface.is_none_or(|s| a.is_surface_supported(s)))
+            .min_by_key(|a| crate::app::offscreen::adapter_rank(&a.get_info(), false))
+            .cloned()
+            .ok_or_else(|| "no adapter can draw into the window".to_owned())
+    }));
     let options = eframe::NativeOptions {
         viewport,
         renderer: eframe::Renderer::Wgpu,
+        wgpu_options: egui_wgpu::WgpuConfiguration {
+            wgpu_setup: egui_wgpu::WgpuSetup::CreateNew(setup),
+            ..Default::default()
+        },
         ..Default::default()
     };
     let open_error = "cannot open the window (no display? set DISPLAY or WAYLAND_DISPLAY, \

@@ -10,27 +10,21 @@ use crate::scene::Scene;
 
 use super::pipeline::{Ctx, PipelineDesc, Technique};
 
-/// Texels per side of the caustics map: 256² over the ±12 m swim box is ~9.6 cm a texel,
-/// finer than the focused lines of the shipped waves (shortest wavelength 1.7 m), and 65 536
-/// texels of five Gerstner sums each cost little next to one lit pixel per screen pixel
-/// (~9 ms of CPU a frame on llvmpipe, docs/benchmarks/scene.md).
-pub const CAUSTICS_MAP_SIZE: u32 = 256;
+pub use super::caps::CAUSTICS_MAP_SIZE;
 
 /// When the automatic quality draws the scene below this scale, the map is drawn at half the
 /// size (a quarter of the cost): the image is blurred by the scaling up anyway.
 pub const HALF_SIZE_BELOW_RENDER_SCALE: f32 = 0.7;
 
-/// The caustics map's side for a frame drawn at `render_scale`.
-pub fn map_size(render_scale: f32) -> u32 {
+/// The caustics map's side for a frame drawn at `render_scale`, `full_px` at full quality
+/// (`RenderCaps::caustics_map_size_px`).
+pub fn map_size(render_scale: f32, full_px: u32) -> u32 {
     if render_scale < HALF_SIZE_BELOW_RENDER_SCALE {
-        CAUSTICS_MAP_SIZE / 2
+        (full_px / 2).max(1)
     } else {
-        CAUSTICS_MAP_SIZE
+        full_px
     }
 }
-
-/// One channel of focusing factor; half floats keep the bright folds (up to 6) unclipped.
-pub const CAUSTICS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R16Float;
 
 /// The caustics map covers |x|, |z| ≤ this (metres): the fish's swim box, a fish length and a
 /// metre more, where the camera looks and the shadow map already concentrates its texels.
@@ -61,7 +55,7 @@ impl Technique for CausticsPipeline {
                     vs: "vs_fullscreen",
                     fs: Some("fs_caustics"),
                     buffers: &[],
-                    color: Some(CAUSTICS_FORMAT),
+                    color: Some(ctx.caps.caustics_format),
                     depth: None,
                     cull: None,
                 },
@@ -70,8 +64,14 @@ impl Technique for CausticsPipeline {
     }
 }
 
-/// The caustics map, `size_px` a side (rendered by the caustics pass, read by the lit passes).
-pub fn caustics_map(device: &wgpu::Device, size_px: u32) -> wgpu::TextureView {
+/// The caustics map, `size_px` a side (rendered by the caustics pass, read by the lit passes):
+/// one channel of focusing factor, half floats keeping the bright folds (up to 6) unclipped
+/// where the adapter renders to them (`RenderCaps::caustics_format`).
+pub fn caustics_map(
+    device: &wgpu::Device,
+    size_px: u32,
+    format: wgpu::TextureFormat,
+) -> wgpu::TextureView {
     device
         .create_texture(&wgpu::TextureDescriptor {
             label: Some("caustics map"),
@@ -83,7 +83,7 @@ pub fn caustics_map(device: &wgpu::Device, size_px: u32) -> wgpu::TextureView {
             mip_level_count: 1,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
-            format: CAUSTICS_FORMAT,
+            format,
             usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
             view_formats: &[],
         })
@@ -96,10 +96,18 @@ pub fn encode(
     pipeline: &CausticsPipeline,
     globals_group: &wgpu::BindGroup,
     map: &wgpu::TextureView,
+    flat_water: f64,
 ) {
+    // cleared to flat water's factor as stored (1, or its 8-bit encoding)
+    let clear = wgpu::Color {
+        r: flat_water,
+        g: 0.0,
+        b: 0.0,
+        a: 1.0,
+    };
     let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
         label: Some("caustics"),
-        color_attachments: &[cleared_color(map, wgpu::Color::WHITE)],
+        color_attachments: &[cleared_color(map, clear)],
         ..Default::default()
     });
     pass.set_pipeline(&pipeline.pipeline);

@@ -13,6 +13,7 @@ use std::sync::{Mutex, OnceLock};
 
 use crate::diag::Diagnostic;
 
+use super::caps::RenderCaps;
 use super::gpu::Gpu;
 use super::layouts::Layouts;
 use super::pipeline::{BuildEnv, TECHNIQUE_SHADERS, check_techniques};
@@ -97,10 +98,12 @@ impl Checker {
             .is_some_and(|n| TECHNIQUE_SHADERS.contains(&n));
         let problems = match (&self.gpu, is_technique) {
             (Ok((gpu, layouts)), true) => {
+                let caps = RenderCaps::decide(&gpu.caps);
                 let env = BuildEnv {
                     device: &gpu.device,
                     layouts,
                     output_format: OUTPUT_FORMAT,
+                    caps: &caps,
                 };
                 let dir = path.parent().unwrap_or(Path::new("."));
                 let me = path.file_name();

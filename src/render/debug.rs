@@ -16,7 +16,8 @@ pub fn layout(device: &wgpu::Device) -> Layout {
         "debug",
         &[
             uniform::<PostParams>(0, vf),
-            texture(1, D::D2, T::Depth),
+            // the depth map as unfilterable floats (see debug.wgsl)
+            texture(1, D::D2, T::Float { filterable: false }),
             texture(2, D::Cube, FLOAT),
             sampler(3, wgpu::SamplerBindingType::Filtering),
             texture(4, D::D2, FLOAT),

@@ -71,7 +71,7 @@ impl Technique for FishPipelines {
                     vs: "vs_main",
                     fs: Some("fs_main"),
                     buffers: &buffers,
-                    color: Some(super::pipeline::HDR_FORMAT),
+                    color: Some(ctx.caps.hdr_format),
                     depth: OPAQUE_DEPTH,
                     cull: Some(wgpu::Face::Back), // the fin is two one-sided copies
                 },

@@ -5,6 +5,8 @@ use std::sync::{Arc, Mutex};
 
 use anyhow::{Context, Result};
 
+use super::caps::AdapterCaps;
+
 /// Errors wgpu could not attribute to an error scope. The default handler panics, which would
 /// take the talk down with it; this one logs and keeps the message for the UI.
 #[derive(Clone, Default)]
@@ -38,15 +40,46 @@ pub struct Gpu {
     pub device: wgpu::Device,
     pub queue: wgpu::Queue,
     pub adapter_info: wgpu::AdapterInfo,
+    /// what the adapter can do, read once (the renderer's formats are decided from it)
+    pub caps: AdapterCaps,
     pub errors: UncapturedErrors,
     pub timestamps: bool,
+}
+
+/// Which device [`Gpu::new`] makes.
+#[derive(Debug, Clone)]
+pub struct GpuRequest {
+    /// None: `WGPU_BACKEND`, else every backend (Vulkan preferred, then GL)
+    pub backends: Option<wgpu::Backends>,
+    /// None: the adapter's own
+    pub limits: Option<wgpu::Limits>,
+    /// ask for the optional features the renderer can use (timestamps)
+    pub optional_features: bool,
+}
+
+impl Default for GpuRequest {
+    fn default() -> Self {
+        Self {
+            backends: None,
+            limits: None,
+            optional_features: true,
+        }
+    }
 }
 
 impl Gpu {
     /// Any adapter, software included; `WGPU_BACKEND` selects one.
     pub fn headless() -> Result<Self> {
-        let instance =
-            wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+        Self::new(&GpuRequest::default())
+    }
+
+    /// The device `request` asks for (tests ask for the GL backend, or WebGL2's limits).
+    pub fn new(request: &GpuRequest) -> Result<Self> {
+        let mut desc = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
+        if let Some(b) = request.backends {
+            desc.backends = b;
+        }
+        let instance = wgpu::Instance::new(desc);
         let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
             power_preference: wgpu::PowerPreference::HighPerformance,
             force_fallback_adapter: false,
@@ -54,18 +87,24 @@ impl Gpu {
             apply_limit_buckets: false,
         }))
         .context("no wgpu adapter (install mesa-vulkan-drivers for lavapipe)")?;
-        let want = wgpu::Features::TIMESTAMP_QUERY;
+        let want = if request.optional_features {
+            wgpu::Features::TIMESTAMP_QUERY
+        } else {
+            wgpu::Features::empty()
+        };
         let features = adapter.features() & want;
+        let limits = request.limits.clone().unwrap_or_else(|| adapter.limits());
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("lectern headless"),
             required_features: features,
-            required_limits: adapter.limits(),
+            required_limits: limits.clone(),
             ..Default::default()
         }))
         .context("requesting a wgpu device")?;
         let errors = UncapturedErrors::install(&device);
         Ok(Self {
             adapter_info: adapter.get_info(),
+            caps: AdapterCaps::of(&adapter, &limits),
             timestamps: features.contains(wgpu::Features::TIMESTAMP_QUERY),
             device,
             queue,

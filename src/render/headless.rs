@@ -8,6 +8,7 @@ use anyhow::{Context, Result};
 
 use crate::scene::{FrameSnapshot, Quality, Scene, SceneSim};
 
+use super::caps::RenderCaps;
 use super::frame::RenderSettings;
 use super::gpu::{self, Gpu};
 use super::renderer::Renderer;
@@ -25,7 +26,20 @@ pub struct Headless {
 impl Headless {
     pub fn new(scene: Scene, shader_dir: &Path) -> Result<Self> {
         let gpu = Gpu::headless()?;
-        let renderer = Renderer::new(&gpu.device, &gpu.queue, shader_dir, &scene, OUTPUT_FORMAT)?;
+        let caps = RenderCaps::decide(&gpu.caps);
+        Self::with_gpu(gpu, caps, scene, shader_dir)
+    }
+
+    /// On a device of the caller's (another backend, smaller limits) with formats from `caps`.
+    pub fn with_gpu(gpu: Gpu, caps: RenderCaps, scene: Scene, shader_dir: &Path) -> Result<Self> {
+        let renderer = Renderer::new(
+            &gpu.device,
+            &gpu.queue,
+            shader_dir,
+            &scene,
+            OUTPUT_FORMAT,
+            caps,
+        )?;
         // headless frames are drawn at full quality unless the scene fixes it
         let mut settings = RenderSettings::default();
         if let Quality::Fixed {
@@ -99,9 +113,10 @@ impl Headless {
         snap: &FrameSnapshot,
         size: (u32, u32),
     ) -> Result<image::RgbaImage> {
+        let max = self.renderer.caps().max_texture_side_px.min(8192);
         anyhow::ensure!(
-            size.0 > 0 && size.1 > 0 && size.0 <= 8192 && size.1 <= 8192,
-            "image size {}x{} must be 1..=8192 per side",
+            size.0 > 0 && size.1 > 0 && size.0 <= max && size.1 <= max,
+            "image size {}x{} must be 1..={max} per side on this adapter",
             size.0,
             size.1
         );

@@ -5,6 +5,7 @@
 //! same way (naga, the interface check, wgpu in an error scope) for the renderer, hot reload
 //! and `lectern check` (`check`).
 
+pub mod caps;
 pub mod caustics;
 pub mod check;
 pub mod debug;

@@ -9,7 +9,7 @@ use crate::scene::Material;
 
 use super::layouts::{FLOAT, Layout, sampler, texture, uniform};
 use super::mesh::Vertex;
-use super::pipeline::{Ctx, HDR_FORMAT, OPAQUE_DEPTH, PerShadowFilter, PipelineDesc, Technique};
+use super::pipeline::{Ctx, OPAQUE_DEPTH, PerShadowFilter, PipelineDesc, Technique};
 
 /// `MaterialParams` in brdf.wgsl.
 #[repr(C)]
@@ -87,7 +87,7 @@ impl Technique for PbrPipeline {
                     vs: "vs_main",
                     fs: Some("fs_main"),
                     buffers: &[Some(Vertex::layout())],
-                    color: Some(HDR_FORMAT),
+                    color: Some(ctx.caps.hdr_format),
                     depth: OPAQUE_DEPTH,
                     cull: Some(wgpu::Face::Back),
                 },

@@ -10,23 +10,19 @@ use std::path::{Path, PathBuf};
 
 use crate::diag::Diagnostic;
 
+use super::caps::RenderCaps;
 use super::frame::{ShadowFilter, WaterNormals};
 use super::layouts::{Layout, Layouts};
 use super::shaders::{self, Checked};
 use super::{caustics, debug, fish, interface, pbr, shadow, sky, tonemap, water};
-
-pub const HDR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
-pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
-pub const CUBE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
-/// The tone-mapped image at the render size, before it is scaled up to the output: sRGB
-/// encoded, so 8 bits keep the dark tones and filtering happens on linear values.
-pub const DISPLAY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
 
 /// Everything a technique's builder needs besides its shader module.
 pub struct Ctx<'a> {
     pub device: &'a wgpu::Device,
     pub layouts: &'a Layouts,
     pub output_format: wgpu::TextureFormat,
+    /// the formats of every target but the output, and the 8-bit encodings
+    pub caps: &'a RenderCaps,
     /// the checked shader being built, for the interface check
     shader: &'a Checked,
     /// interface mismatches found while building
@@ -128,8 +124,9 @@ impl Ctx<'_> {
                 .iter()
                 .any(|(_, o)| o.name.as_deref() == Some(name))
         };
-        let constants: Vec<(&str, f64)> = constants
-            .iter()
+        // every pipeline gets the target encodings its shader declares (encoding.wgsl)
+        let encoding = self.caps.encoding.constants();
+        let constants: Vec<(&str, f64)> = (constants.iter().chain(&encoding))
             .copied()
             .filter(|(name, _)| declared(name))
             .collect();
@@ -179,7 +176,7 @@ impl Ctx<'_> {
                 depth_stencil: d
                     .depth
                     .map(|(write, compare, bias)| wgpu::DepthStencilState {
-                        format: DEPTH_FORMAT,
+                        format: self.caps.depth_format,
                         depth_write_enabled: Some(write),
                         depth_compare: Some(compare),
                         stencil: Default::default(),
@@ -216,6 +213,7 @@ pub struct BuildEnv<'a> {
     pub device: &'a wgpu::Device,
     pub layouts: &'a Layouts,
     pub output_format: wgpu::TextureFormat,
+    pub caps: &'a RenderCaps,
 }
 
 /// Builds technique `T` from `path`: naga, the interface check, then wgpu inside an error
@@ -226,6 +224,7 @@ pub fn build<T: Technique>(env: &BuildEnv, path: &Path) -> Result<T, Vec<Diagnos
         device: env.device,
         layouts: env.layouts,
         output_format: env.output_format,
+        caps: env.caps,
         shader: &shader,
         problems: RefCell::new(Vec::new()),
     };

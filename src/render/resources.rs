@@ -277,6 +277,7 @@ impl SceneResources {
         scene: &Scene,
         snap: &FrameSnapshot,
         view: &LodView,
+        max_fish: usize,
     ) {
         self.ensure_water_grid(device, scene);
         if self.uploaded_materials != scene.materials {
@@ -307,11 +308,13 @@ impl SceneResources {
             queue.write_buffer(&o.uniform, 0, bytemuck::bytes_of(&data));
             o.uploaded = Some(o.world_from_object);
         }
-        if snap.fish.len() > self.fish_capacity {
-            self.fish_capacity = snap.fish.len().next_power_of_two();
+        // beyond what one buffer may hold on this adapter (`RenderCaps`), the rest are not drawn
+        let fish = &snap.fish[..snap.fish.len().min(max_fish)];
+        if fish.len() > self.fish_capacity {
+            self.fish_capacity = fish.len().next_power_of_two().min(max_fish);
             self.fish_instances = Self::fish_buffer(device, self.fish_capacity);
         }
-        self.fish_ranges = self.fish_sorter.sort(&snap.fish, view);
+        self.fish_ranges = self.fish_sorter.sort(fish, view);
         let sorted = &self.fish_sorter.sorted;
         if !sorted.is_empty() {
             queue.write_buffer(&self.fish_instances, 0, bytemuck::cast_slice(sorted));

@@ -8,11 +8,12 @@ use glam::{Mat4, Vec3};
 
 use crate::scene::{Object, Scene};
 
+use super::caps::RenderCaps;
 use super::mesh::Vertex;
-use super::pipeline::{Ctx, DEPTH_FORMAT, PipelineDesc, Technique};
+use super::pipeline::{Ctx, PipelineDesc, Technique};
 
 /// Texels per side of the shadow map.
-pub const SHADOW_MAP_SIZE: u32 = 1024;
+pub use super::caps::SHADOW_MAP_SIZE;
 
 /// Slope-scaled depth bias of the shadow casters (in depth-format units and per unit slope).
 pub const SHADOW_BIAS: wgpu::DepthBiasState = wgpu::DepthBiasState {
@@ -50,19 +51,19 @@ impl Technique for ShadowPipeline {
 }
 
 /// The shadow map's depth texture (its view is bound by the lit passes and the debug view).
-pub fn shadow_map(device: &wgpu::Device) -> wgpu::TextureView {
+pub fn shadow_map(device: &wgpu::Device, caps: &RenderCaps) -> wgpu::TextureView {
     device
         .create_texture(&wgpu::TextureDescriptor {
             label: Some("shadow map"),
             size: wgpu::Extent3d {
-                width: SHADOW_MAP_SIZE,
-                height: SHADOW_MAP_SIZE,
+                width: caps.shadow_map_size_px,
+                height: caps.shadow_map_size_px,
                 depth_or_array_layers: 1,
             },
             mip_level_count: 1,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
-            format: DEPTH_FORMAT,
+            format: caps.depth_format,
             usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
             view_formats: &[],
         })

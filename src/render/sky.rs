@@ -11,8 +11,9 @@ use wgpu::util::DeviceExt;
 
 use crate::scene::Scene;
 
+use super::caps::RenderCaps;
 use super::layouts::{FLOAT, Layout, Layouts, sampler, texture, uniform};
-use super::pipeline::{CUBE_FORMAT, Ctx, HDR_FORMAT, NO_BIAS, PipelineDesc, Technique};
+use super::pipeline::{Ctx, NO_BIAS, PipelineDesc, Technique};
 
 /// Group 1 of the cube-face pass: the sky's colours and the face being drawn.
 pub fn params_layout(device: &wgpu::Device) -> Layout {
@@ -54,7 +55,7 @@ impl Technique for SkyPipelines {
                     vs: "vs_fullscreen",
                     fs: Some("fs_cube_face"),
                     buffers: &[],
-                    color: Some(CUBE_FORMAT),
+                    color: Some(ctx.caps.cube_format),
                     depth: None,
                     cull: None,
                 },
@@ -67,7 +68,7 @@ impl Technique for SkyPipelines {
                     vs: "vs_fullscreen",
                     fs: Some("fs_background"),
                     buffers: &[],
-                    color: Some(HDR_FORMAT),
+                    color: Some(ctx.caps.hdr_format),
                     depth: Some((false, wgpu::CompareFunction::LessEqual, NO_BIAS)),
                     cull: None,
                 },
@@ -93,7 +94,7 @@ impl Technique for PrefilterPipeline {
                     vs: "vs_fullscreen",
                     fs: Some("fs_main"),
                     buffers: &[],
-                    color: Some(CUBE_FORMAT),
+                    color: Some(ctx.caps.cube_format),
                     depth: None,
                     cull: None,
                 },
@@ -164,7 +165,13 @@ fn cube_view(texture: &wgpu::Texture) -> wgpu::TextureView {
     })
 }
 
-fn cube_texture(device: &wgpu::Device, label: &str, size: u32, mips: u32) -> wgpu::Texture {
+fn cube_texture(
+    device: &wgpu::Device,
+    label: &str,
+    size: u32,
+    mips: u32,
+    format: wgpu::TextureFormat,
+) -> wgpu::Texture {
     device.create_texture(&wgpu::TextureDescriptor {
         label: Some(label),
         size: wgpu::Extent3d {
@@ -175,7 +182,7 @@ fn cube_texture(device: &wgpu::Device, label: &str, size: u32, mips: u32) -> wgp
         mip_level_count: mips,
         sample_count: 1,
         dimension: wgpu::TextureDimension::D2,
-        format: CUBE_FORMAT,
+        format,
         usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
         view_formats: &[],
     })
@@ -208,12 +215,13 @@ pub fn build(
     (sky, prefilter): (&SkyPipelines, &PrefilterPipeline),
     key: &SkyKey,
     sampler: &wgpu::Sampler,
+    caps: &RenderCaps,
 ) -> Environment {
-    let size = key.sky.cube_size;
+    let size = key.sky.cube_size.min(caps.max_texture_side_px);
     // down to 8×8: rougher lobes than that are flat anyway
     let mips = (size.trailing_zeros() + 1).saturating_sub(3).max(1);
-    let raw = cube_texture(device, "sky raw", size, 1);
-    let env = cube_texture(device, "sky env", size, mips);
+    let raw = cube_texture(device, "sky raw", size, 1, caps.cube_format);
+    let env = cube_texture(device, "sky env", size, mips, caps.cube_format);
     let sun = glam::Vec3::from(key.sun.direction).normalize();
     let k = &key.sky;
     let empty = device.create_bind_group(&wgpu::BindGroupDescriptor {

@@ -4,8 +4,8 @@
 //! display image at the same size (scaled up to the output by the last pass), and the bind
 //! groups that read them.
 
+use super::caps::RenderCaps;
 use super::layouts::Layouts;
-use super::pipeline::{DEPTH_FORMAT, DISPLAY_FORMAT, HDR_FORMAT};
 
 /// A colour attachment cleared to `clear` and stored (every pass that draws a new target).
 pub fn cleared_color(
@@ -87,21 +87,28 @@ impl Targets {
         size: (u32, u32),
         post_params: &wgpu::Buffer,
         linear_clamp: &wgpu::Sampler,
+        caps: &RenderCaps,
     ) -> Self {
         use wgpu::TextureUsages as U;
         let hdr = texture_2d(
             device,
             "hdr",
             size,
-            HDR_FORMAT,
+            caps.hdr_format,
             U::RENDER_ATTACHMENT | U::TEXTURE_BINDING | U::COPY_SRC,
         );
-        let depth = texture_2d(device, "depth", size, DEPTH_FORMAT, U::RENDER_ATTACHMENT);
+        let depth = texture_2d(
+            device,
+            "depth",
+            size,
+            caps.depth_format,
+            U::RENDER_ATTACHMENT,
+        );
         let scene_color = texture_2d(
             device,
             "scene colour",
             size,
-            HDR_FORMAT,
+            caps.hdr_format,
             U::COPY_DST | U::TEXTURE_BINDING,
         );
         let hdr_view = hdr.create_view(&Default::default());
@@ -128,7 +135,7 @@ impl Targets {
             device,
             "display",
             size,
-            DISPLAY_FORMAT,
+            caps.display_format,
             U::RENDER_ATTACHMENT | U::TEXTURE_BINDING,
         );
         let display_view = display.create_view(&Default::default());

@@ -7,7 +7,7 @@
 use bytemuck::{Pod, Zeroable};
 
 use super::layouts::{FLOAT, Layout, sampler, texture, uniform};
-use super::pipeline::{Ctx, DISPLAY_FORMAT, PipelineDesc, Technique};
+use super::pipeline::{Ctx, PipelineDesc, Technique};
 
 /// `Post` in tonemap.wgsl and debug.wgsl.
 #[repr(C)]
@@ -62,7 +62,7 @@ impl Technique for TonemapPipeline {
             vs: "vs_fullscreen",
             fs: Some("fs_main"),
             buffers: &[],
-            color: Some(DISPLAY_FORMAT),
+            color: Some(ctx.caps.display_format),
             depth: None,
             cull: None,
         };

@@ -8,7 +8,7 @@
 
 use super::frame::{ShadowFilter, WaterNormals};
 use super::layouts::{FLOAT, Layout, sampler, texture};
-use super::pipeline::{Ctx, HDR_FORMAT, NO_BIAS, PerShadowFilter, PipelineDesc, Technique};
+use super::pipeline::{Ctx, NO_BIAS, PerShadowFilter, PipelineDesc, Technique};
 
 /// Group 1 of the water: the opaque colour (a copy; alpha the distance from the eye), a
 /// sampler.
@@ -58,7 +58,7 @@ impl Technique for WaterPipeline {
                     vs: "vs_main",
                     fs: Some("fs_main"),
                     buffers: &[Some(vertex_layout())],
-                    color: Some(HDR_FORMAT),
+                    color: Some(ctx.caps.hdr_format),
                     // tests against the opaque depth, never writes it
                     depth: Some((false, wgpu::CompareFunction::Less, NO_BIAS)),
                     cull: None,

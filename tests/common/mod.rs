@@ -61,3 +61,34 @@ pub fn scene_snapshot_options(img: &image::RgbaImage) -> egui_kittest::SnapshotO
         .threshold(SCENE_SNAPSHOT_THRESHOLD)
         .max_failed_pixels(scene_max_failed_pixels(img))
 }
+
+/// A headless device on the GL backend (Mesa's llvmpipe in CI), or None after saying loudly why
+/// not: the caller skips only its GL case.
+pub fn gl_gpu(test: &str) -> Option<lectern::render::gpu::Gpu> {
+    let request = lectern::render::gpu::GpuRequest {
+        backends: Some(wgpu::Backends::GL),
+        ..Default::default()
+    };
+    match lectern::render::gpu::Gpu::new(&request) {
+        Ok(gpu) => Some(gpu),
+        Err(e) => {
+            eprintln!(
+                "\n!!!!! {test}: SKIPPING THE GL CASE: no GL adapter ({e:#}); \
+                 install libegl1 libgl1-mesa-dri !!!!!\n"
+            );
+            None
+        }
+    }
+}
+
+/// The scene renderer on the GL backend with the formats its adapter allows.
+pub fn gl_headless(
+    test: &str,
+    scene: lectern::scene::Scene,
+    shaders: &Path,
+) -> Option<lectern::render::Headless> {
+    let gpu = gl_gpu(test)?;
+    assert_eq!(gpu.adapter_info.backend, wgpu::Backend::Gl);
+    let caps = lectern::render::caps::RenderCaps::decide(&gpu.caps);
+    Some(lectern::render::Headless::with_gpu(gpu, caps, scene, shaders).unwrap())
+}

@@ -96,12 +96,14 @@ impl Renderer {
         size: (u32, u32),
     ) -> wgpu::CommandEncoder {
         let size = (size.0.max(1), size.1.max(1));
-        let inner = render_size(size, settings.render_scale);
+        let inner = self.caps.fit(render_size(size, settings.render_scale));
         self.ensure_targets(inner);
-        let caustics_size_px = caustics::map_size(settings.render_scale);
+        let caustics_size_px =
+            caustics::map_size(settings.render_scale, self.caps.caustics_map_size_px);
         if caustics_size_px != self.caustics_size_px {
             self.caustics_size_px = caustics_size_px;
-            self.caustics_view = caustics::caustics_map(&self.device, caustics_size_px);
+            self.caustics_view =
+                caustics::caustics_map(&self.device, caustics_size_px, self.caps.caustics_format);
             // the lit passes' and the debug view's groups hold the map
             self.env_changed();
         }
@@ -125,8 +127,14 @@ impl Renderer {
             eye: snap.camera.eye,
             detail: settings.fish_detail,
         };
-        self.res
-            .update(&self.device, &self.queue, scene, snap, &lod_view);
+        self.res.update(
+            &self.device,
+            &self.queue,
+            scene,
+            snap,
+            &lod_view,
+            self.caps.max_fish_instances,
+        );
         let ranges = &self.res.fish_ranges;
         self.info = FrameInfo {
             render_size: inner,
@@ -172,6 +180,7 @@ impl Renderer {
                 &p.caustics.current,
                 &self.shadow_frame_group,
                 &self.caustics_view,
+                f64::from(self.caps.encoding.caustics_store_scale),
             );
         }
 

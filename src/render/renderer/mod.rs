@@ -11,6 +11,7 @@ use wgpu::util::DeviceExt;
 use crate::diag::Diagnostic;
 use crate::scene::Scene;
 
+use super::caps::RenderCaps;
 use super::caustics;
 use super::frame::Globals;
 use super::layouts::Layouts;
@@ -43,6 +44,7 @@ pub struct Renderer {
     layouts: Layouts,
     passes: Passes,
     output_format: wgpu::TextureFormat,
+    caps: RenderCaps,
     linear_clamp: wgpu::Sampler,
     linear_repeat: wgpu::Sampler,
     shadow_sampler: wgpu::Sampler,
@@ -96,13 +98,15 @@ pub fn render_size(size: (u32, u32), render_scale: f32) -> (u32, u32) {
 
 impl Renderer {
     /// Builds pipelines from `shader_dir` (every shader must be valid the first time) and the
-    /// scene's GPU resources. `output_format` is what `render` draws into.
+    /// scene's GPU resources. `output_format` is what `render` draws into; every other format
+    /// and size comes from `caps` (decided once from the adapter, [`RenderCaps::decide`]).
     pub fn new(
         device: &wgpu::Device,
         queue: &wgpu::Queue,
         shader_dir: &Path,
         scene: &Scene,
         output_format: wgpu::TextureFormat,
+        caps: RenderCaps,
     ) -> Result<Self, Diagnostic> {
         let layouts = Layouts::new(device);
         let passes = Passes::new(
@@ -110,6 +114,7 @@ impl Renderer {
                 device,
                 layouts: &layouts,
                 output_format,
+                caps: &caps,
             },
             shader_dir,
         )?;
@@ -120,9 +125,9 @@ impl Renderer {
             wgpu::AddressMode::ClampToEdge,
             Some(wgpu::CompareFunction::LessEqual),
         );
-        let shadow_view = shadow::shadow_map(device);
-        let caustics_size_px = caustics::CAUSTICS_MAP_SIZE;
-        let caustics_view = caustics::caustics_map(device, caustics_size_px);
+        let shadow_view = shadow::shadow_map(device, &caps);
+        let caustics_size_px = caps.caustics_map_size_px;
+        let caustics_view = caustics::caustics_map(device, caustics_size_px, caps.caustics_format);
         let globals = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("globals"),
             size: std::mem::size_of::<Globals>() as u64,
@@ -142,6 +147,7 @@ impl Renderer {
             (&passes.sky.current, &passes.prefilter.current),
             &sky_key,
             &linear_clamp,
+            &caps,
         );
         let res = SceneResources::new(device, queue, &layouts, scene, &linear_repeat);
         let shadow_frame_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -164,6 +170,7 @@ impl Renderer {
             layouts,
             passes,
             output_format,
+            caps,
             linear_clamp,
             linear_repeat,
             shadow_sampler,
@@ -221,6 +228,7 @@ impl Renderer {
             (&self.passes.sky.current, &self.passes.prefilter.current),
             &self.sky_key,
             &self.linear_clamp,
+            &self.caps,
         );
         self.sky_generations = (self.passes.sky.generation, self.passes.prefilter.generation);
         self.env_changed();
@@ -233,6 +241,7 @@ impl Renderer {
             device: &self.device,
             layouts: &self.layouts,
             output_format: self.output_format,
+            caps: &self.caps,
         };
         let any = self.passes.reload(&env, changed);
         if (self.passes.sky.generation, self.passes.prefilter.generation) != self.sky_generations {
@@ -265,6 +274,11 @@ impl Renderer {
         self.output_format
     }
 
+    /// The formats and sizes in use.
+    pub fn caps(&self) -> &RenderCaps {
+        &self.caps
+    }
+
     /// What the last frame drew.
     pub fn frame_info(&self) -> &FrameInfo {
         &self.info
@@ -280,6 +294,7 @@ impl Renderer {
             size,
             &self.post_params,
             &self.linear_clamp,
+            &self.caps,
         ));
     }
 }

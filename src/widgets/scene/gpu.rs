@@ -5,12 +5,9 @@
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
-use crate::reload::DirWatcher;
+use super::host::SceneHost;
 use crate::render::Renderer;
 use crate::scene::Scene;
-
-/// Quiet time after a save before the scene's files are re-read (as scene mode).
-const RELOAD_DEBOUNCE: std::time::Duration = std::time::Duration::from_millis(80);
 
 /// The format a slide's scene is rendered in: plain 8-bit, the output shader writing sRGB-encoded
 /// values itself (`to_target`, srgb.wgsl), which is what egui reads from a texture. No sRGB
@@ -38,9 +35,8 @@ struct SharedRenderer {
     scene_path: PathBuf,
     /// the scene the renderer's meshes and materials were built from
     scene: Scene,
-    renderer: Renderer,
-    /// the shader folder and the scene's folder, as scene mode watches them
-    watcher: Option<DirWatcher>,
+    /// the renderer, the shader folder and the scene's folder watched as in scene mode
+    host: SceneHost,
     /// bumped when a shader or the scene file changed on disk: frames drawn before are stale
     generation: u64,
 }
@@ -93,20 +89,13 @@ impl SceneGpu {
         let Some(shared) = all.iter_mut().find(|r| r.scene_path == scene_path) else {
             return 0;
         };
-        let Some(w) = &shared.watcher else {
-            return shared.generation;
-        };
-        let changed = w.poll();
-        let shaders: Vec<PathBuf> = (changed.iter())
-            .filter(|p| p.extension().is_some_and(|e| e == "wgsl"))
-            .cloned()
-            .collect();
-        if !shaders.is_empty() {
-            shared.renderer.reload_shaders(&shaders);
-        }
+        let changed = shared.host.poll();
+        let shaders_saved = changed
+            .iter()
+            .any(|p| p.extension().is_some_and(|e| e == "wgsl"));
         let scene_name = scene_path.file_name();
         let scene_saved = changed.iter().any(|p| p.file_name() == scene_name);
-        if !shaders.is_empty() || scene_saved {
+        if shaders_saved || scene_saved {
             shared.generation += 1;
         }
         shared.generation
@@ -120,7 +109,8 @@ impl SceneGpu {
         };
         (all.iter().find(|r| r.scene_path == scene_path))
             .map(|r| {
-                r.renderer
+                r.host
+                    .renderer
                     .shader_errors()
                     .iter()
                     .map(|d| d.to_string())
@@ -144,26 +134,18 @@ impl SceneGpu {
         let index = match all.iter().position(|r| r.scene_path == scene_path) {
             Some(i) => i,
             None => {
-                let started = std::time::Instant::now();
-                let shader_dir = crate::bundled::shader_folder_for_scene(scene_path)?.dir;
-                let rs = &self.render_state;
-                let renderer =
-                    Renderer::new(&rs.device, &rs.queue, &shader_dir, scene, OUTPUT_FORMAT)
-                        .map_err(|e| format!("the scene renderer could not start: {e:#}"))?;
-                tracing::debug!("scene renderer for slides made in {:?}", started.elapsed());
-                let watcher = self.watch_files.then(|| {
+                let started = web_time::Instant::now();
+                let wake = self.watch_files.then(|| {
                     let ctx = self.ctx.clone();
-                    let scene_dir = scene_path.parent().unwrap_or(Path::new("."));
-                    let wake = move || ctx.request_repaint();
-                    DirWatcher::new(&[&shader_dir, scene_dir], RELOAD_DEBOUNCE, wake)
-                        .map_err(|e| tracing::warn!("scene on slides: not watching files: {e}"))
-                        .ok()
+                    Box::new(move || ctx.request_repaint()) as Box<dyn Fn() + Send>
                 });
+                let host =
+                    SceneHost::new(&self.render_state, scene_path, scene, OUTPUT_FORMAT, wake)?;
+                tracing::debug!("scene renderer for slides made in {:?}", started.elapsed());
                 all.push(SharedRenderer {
                     scene_path: scene_path.to_path_buf(),
                     scene: scene.clone(),
-                    renderer,
-                    watcher: watcher.flatten(),
+                    host,
                     generation: 0,
                 });
                 all.len() - 1
@@ -171,10 +153,10 @@ impl SceneGpu {
         };
         let shared = &mut all[index];
         if shared.scene != *scene {
-            shared.renderer.set_scene(scene);
+            shared.host.renderer.set_scene(scene);
             shared.scene = scene.clone();
         }
-        Ok(draw(&mut shared.renderer))
+        Ok(draw(&mut shared.host.renderer))
     }
 }
 

@@ -12,6 +12,7 @@
 //! widget never makes one, so it costs nothing there.
 
 pub mod gpu;
+pub mod host;
 pub mod legend;
 
 use std::path::{Path, PathBuf};
