@@ -327,8 +327,9 @@ mod tests {
     /// after it, and nothing else would notice).
     #[test]
     fn globals_match_common_wgsl_field_by_field() {
-        let text = std::fs::read_to_string("shaders/common.wgsl").unwrap();
-        // common.wgsl alone declares the bindings; a stub entry point makes it a module
+        // common.wgsl declares the bindings; with encoding.wgsl, whose functions it calls
+        let text = std::fs::read_to_string("shaders/common.wgsl").unwrap()
+            + &std::fs::read_to_string("shaders/encoding.wgsl").unwrap();
         let module = naga::front::wgsl::parse_str(&text).unwrap();
         let (_, ty) = module
             .types
