@@ -45,19 +45,25 @@ enum Command {
 }
 
 fn main() -> std::process::ExitCode {
+    let cli = Cli::parse();
+    let window = matches!(cli.command, None | Some(Command::Present(_)));
+    // wgpu also probes OpenGL; without a GL driver its EGL probe logs an ERROR that is none
+    // (the Vulkan adapter, lavapipe included, is used): keep it quiet. The headless commands
+    // name their adapter themselves, so egui-wgpu's "software rasterizer" warning is noise
+    // there; the window keeps it (it explains a slow window).
+    let default_filter = if window {
+        "warn,lectern=info,wgpu_hal::gles::egl=off"
+    } else {
+        "warn,lectern=info,wgpu_hal::gles::egl=off,egui_wgpu=error"
+    };
     tracing_subscriber::fmt()
         .with_env_filter(
             tracing_subscriber::EnvFilter::try_from_default_env()
-                // wgpu also probes OpenGL; without a GL driver its EGL probe logs an ERROR that
-                // is none (the Vulkan adapter, lavapipe included, is used): keep it quiet.
-                .unwrap_or_else(|_| "warn,lectern=info,wgpu_hal::gles::egl=off".into()),
+                .unwrap_or_else(|_| default_filter.into()),
         )
         .with_writer(std::io::stderr)
         .init();
-    let cli = Cli::parse();
-    if !matches!(cli.command, None | Some(Command::Present(_))) {
-        quiet_runtime_dir();
-    }
+    quiet_runtime_dir();
     let result = match cli.command {
         None => cli::present::run(cli::present::Args::default()),
         Some(Command::Present(a)) => cli::present::run(a),
@@ -83,9 +89,9 @@ fn main() -> std::process::ExitCode {
 }
 
 /// Mesa's Vulkan software driver (lavapipe) prints "XDG_RUNTIME_DIR is invalid or not set" when
-/// the variable names no folder (a server, CI, a `sudo` shell). The command-line tools need no
-/// session folder, so they get a private one and the line goes away; the window keeps the
-/// session's own (Wayland needs the real one).
+/// the variable names no folder (a server, CI, a `sudo` shell, a bare Xvfb). Every command,
+/// the window included, then gets a private one and the line goes away: a valid one (a
+/// desktop session's, which Wayland needs) is never replaced.
 fn quiet_runtime_dir() {
     let valid = std::env::var_os("XDG_RUNTIME_DIR")
         .map(std::path::PathBuf::from)

@@ -2,7 +2,10 @@
 //! (PNG, PDF, `--data`) and presenting, each from a different working directory; the deck's
 //! path spelt four ways gives one result; the scene works in a project without `shaders/`
 //! (the built-in ones) and a project whose `shaders/` lacks one fails `check` at the widget;
-//! one unparsable slide leaves the others presenting and exporting.
+//! one unparsable slide leaves the others presenting and exporting; the presenter's controls and
+//! its typed-equation preview fit 1280×720; a phase plane in a column shows the view it asks for.
+
+mod common;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -114,6 +117,8 @@ fn a_new_project_checks_exports_and_presents_from_any_folder() {
     let said = text(&export);
     assert!(export.status.success(), "{said}");
     assert!(!said.contains("XDG_RUNTIME_DIR"), "{said}");
+    // the adapter is named in export's own summary: egui-wgpu's warning would say it twice
+    assert!(!said.contains("Software rasterizer"), "{said}");
     assert_eq!(pngs(&out_dir), 7, "{said}");
     assert!(std::fs::read(&pdf).unwrap().starts_with(b"%PDF"));
     // the live oscillator's points: x' = v, v' = -2ζωv - ω²x from (1, 0) with h = 0.1
@@ -382,4 +387,122 @@ fn the_presenter_overlay_shows_every_control_of_the_live_slide_at_720_px() {
         .collect();
     assert_eq!(fields.len(), 2, "{fields:?}");
     assert!(fields.iter().all(|r| r.bottom() <= 720.0), "{fields:?}");
+
+    // typing v' without ζ: the preview is large enough to read (its plot a quarter of the
+    // controls' area at least: it was ~60 points of 318 before the slide gave way to it), and
+    // after Enter ζ's slider stays, greyed and marked unused
+    let v_field = h
+        .get_all_by_role(egui::accesskit::Role::TextInput)
+        .nth(1)
+        .unwrap();
+    v_field.focus();
+    h.run_steps(2);
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::A);
+    h.run_steps(1);
+    h.get_all_by_role(egui::accesskit::Role::TextInput)
+        .nth(1)
+        .unwrap()
+        .type_text("-omega^2*x");
+    h.run_steps(4);
+    let preview = h.get_by_label("equation preview").rect();
+    let area_top = h
+        .get_by_label("Live controls (R resets, Ctrl+S writes back)")
+        .rect()
+        .top();
+    let area_h = 720.0 - area_top;
+    // the plot: from under its y axis's name (a label, the only one of the preview's below
+    // its values) to the preview's bottom, less the x axis and its name (at most 45 points
+    // at the presenter's size)
+    let y_name_bottom = (h.query_all_by_label("v").map(|n| n.rect()))
+        .filter(|r| preview.contains_rect(*r))
+        .map(|r| r.bottom())
+        .fold(f32::NAN, f32::max);
+    let plot_h = preview.bottom() - y_name_bottom - 45.0;
+    assert!(
+        plot_h >= area_h / 4.0 && preview.bottom() <= 721.0,
+        "preview {preview:?}: its plot {plot_h} tall in a control area {area_h} tall"
+    );
+    h.key_press(egui::Key::Enter);
+    h.run_steps(4);
+    use egui_kittest::kittest::NodeT;
+    let unused: Vec<_> = h
+        .query_all_by_label("zeta (unused by the equation)")
+        .map(|n| n.accesskit_node().is_disabled())
+        .collect();
+    assert!(
+        !unused.is_empty() && unused.iter().all(|d| *d),
+        "{unused:?}"
+    );
+    assert!(
+        (h.query_all_by_label("omega")).all(|n| !n.accesskit_node().is_disabled()),
+        "ω still moves the plot"
+    );
+}
+
+/// The pain that started the issue: a phase plane inside `Columns` shows the `view` it asks for
+/// (v in ±2.5, not squeezed to equal axes), and its header line (equation and readout) and
+/// plot stay inside its column; beside it, a Lorenz (x, z) plane shows its whole butterfly.
+#[test]
+fn a_phase_plane_in_a_column_shows_its_view_and_stays_in_the_column() {
+    use std::sync::Arc;
+    let oscillator = r#"Widget(SlopeField((ode: Inline((vars: ["x", "v"], rhs: ["v", "-2*zeta*omega*v - omega^2*x"], params: {"zeta": 0.15, "omega": 2.0}, initial: [1.0, 0.0])), h: 0.1, t_end: 10.0, view: (-1.2, 1.2, -2.5, 2.5), aspect: Free, methods: [Euler, Rk4], exact: false)))"#;
+    let lorenz = r#"Widget(SlopeField((ode: Inline((vars: ["x", "y", "z"], rhs: ["sigma*(y - x)", "x*(rho - z) - y", "x*y - beta*z"], params: {"sigma": 10.0, "rho": 28.0, "beta": 2.6666666666666665}, initial: [1.0, 1.0, 1.0])), h: 0.01, t_end: 30.0, plot: ("x", "z"), view: (-25.0, 25.0, 0.0, 55.0), methods: [Rk4], exact: false)))"#;
+    let text = format!(
+        "(title: \"t\", slides: [(title: \"Two planes\", body: [Columns([[{oscillator}], [{lorenz}]])])])"
+    );
+    let deck = Arc::new(lectern::deck::parse_deck(&text, Path::new("d.ron")).unwrap());
+    let mut state = lectern::app::SlideState::default();
+    let mut h = Harness::builder()
+        .with_size([1280.0, 720.0])
+        .build_ui(move |ui| {
+            lectern::app::slide_ui(ui, &deck, 0, &mut state);
+        });
+    h.run_steps(3);
+    let mut widgets = lectern::app::drawn_widgets(&h.ctx);
+    widgets.sort_by(|a, b| a.slot.left().total_cmp(&b.slot.left()));
+    assert_eq!(widgets.len(), 2, "{widgets:?}");
+    let (left, right) = (&widgets[0], &widgets[1]);
+    assert!(left.slot.right() <= right.slot.left(), "{left:?} {right:?}");
+    for w in [left, right] {
+        assert!(
+            w.slot.width() <= w.content.width() / 2.0,
+            "a column's share: {w:?}"
+        );
+        assert!(w.slot.expand(0.5).contains_rect(w.drawn), "{w:?}");
+    }
+    // every text in a column (header, readout, tick labels) is inside it and not clipped
+    let boxes = common::text_boxes(h.output());
+    let in_slot = |slot: egui::Rect| -> Vec<(String, egui::Rect)> {
+        (boxes.iter())
+            .filter(|(_, r, _)| slot.contains(r.center()))
+            .map(|(t, r, _)| (t.replace('\u{2212}', "-").trim().to_owned(), *r))
+            .collect()
+    };
+    for w in [left, right] {
+        for (t, r) in in_slot(w.slot) {
+            assert!(
+                w.slot.expand(0.5).contains_rect(r),
+                "{t:?} at {r:?} leaves {w:?}"
+            );
+        }
+    }
+    for (t, r, clip) in &boxes {
+        assert!(clip.expand(0.5).contains_rect(*r), "{t:?} cut by its clip");
+    }
+    // the views: ticks at ±2 on v (an equal-aspect plot of x in ±1.2 would show v in about
+    // ±0.6 at this size), and z up to 50, x from -20 to 20 on the Lorenz plane
+    let ticks = |w: &lectern::app::DrawnWidget| -> Vec<String> {
+        in_slot(w.slot).into_iter().map(|(t, _)| t).collect()
+    };
+    let osc = ticks(left);
+    for want in ["2", "-2", "1", "-1"] {
+        assert!(
+            osc.iter().any(|t| t == want),
+            "no tick {want} on v: {osc:?}"
+        );
+    }
+    let lor = ticks(right);
+    for want in ["50", "-20", "20"] {
+        assert!(lor.iter().any(|t| t == want), "no tick {want}: {lor:?}");
+    }
 }

@@ -167,6 +167,54 @@ fn check_reports_an_inline_error_at_its_character() {
     assert!(out.contains("nosuchthing"), "{out}");
 }
 
+/// `latex: true` on a paragraph or a list: its `$…$` are LaTeX (the plain string form stays
+/// Typst); `check` typesets them so and reports a LaTeX error at its formula's first character
+/// (mitex gives no column inside the formula).
+#[test]
+fn latex_paragraphs_typeset_as_latex_and_check_places_their_error() {
+    use lectern::deck::Block;
+    let latex = deck(r#"Text((src: r"where $\alpha \le 1$ holds", latex: true))"#);
+    let formulas = lectern::math::deck::formulas(&latex, None);
+    assert_eq!(formulas.len(), 1);
+    assert_eq!(
+        (formulas[0].src, formulas[0].syntax),
+        (r"\alpha \le 1", MathSyntax::Latex)
+    );
+    let plain = deck(r#"Bullets(["$alpha$"]), Bullets((items: ["$\\beta$"], latex: true))"#);
+    let syntaxes: Vec<MathSyntax> = (lectern::math::deck::formulas(&plain, None).iter())
+        .map(|f| f.syntax)
+        .collect();
+    assert_eq!(syntaxes, [MathSyntax::Typst, MathSyntax::Latex]);
+    assert!(matches!(&plain.slides[0].body[1], Block::Bullets(b) if b.latex));
+
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("inline.ron");
+    let text = concat!(
+        "(title: \"Inline\", slides: [(title: \"Steps\", body: [\n",
+        "    Text((src: r\"fine $\\alpha$\", latex: true)),\n",
+        "    Bullets((items: [\"ok\", r\"ω then $x + \\notacommand{x}$ and\"], latex: true)),\n",
+        "])])"
+    );
+    std::fs::write(&file, text).unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_lectern"))
+        .arg("check")
+        .arg(&file)
+        .env_remove("XDG_RUNTIME_DIR")
+        .output()
+        .unwrap();
+    let out = String::from_utf8_lossy(&o.stdout).into_owned() + &String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "{out}");
+    let line = text.lines().nth(2).unwrap();
+    let byte = line.find(r"x + \notacommand").unwrap();
+    let col = line[..byte].chars().count() + 1;
+    let want = format!("inline.ron:3:{col}: formula:");
+    assert!(out.contains(&want), "want {want} in {out}");
+    assert!(
+        !out.contains("inline.ron:2:"),
+        "the good LaTeX paragraph passes: {out}"
+    );
+}
+
 /// The PDF handout keeps the maths: its page image is the PNG export (formula included), and
 /// differs from the same slide with the formula left out.
 #[test]

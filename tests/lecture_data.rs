@@ -369,7 +369,7 @@ fn the_rk4_slide_names_the_typos_colour() {
         .body
         .iter()
         .filter_map(|b| match b {
-            Block::Text(t) => Some(t.as_str()),
+            Block::Text(t) => Some(t.src.as_str()),
             _ => None,
         })
         .collect();

@@ -128,6 +128,9 @@ fn every_block_and_its_fields_are_in_the_reference() {
     for (variant, text) in [
         ("Math", "Math(zz_no_such_field: 0)"),
         ("Image", "Image(zz_no_such_field: 0)"),
+        // the field forms of a paragraph and a list
+        ("Text", "Text((zz_no_such_field: 0))"),
+        ("Bullets", "Bullets((zz_no_such_field: 0))"),
     ] {
         let names = fields::<Block>(text);
         let row = section(&doc, "## Blocks")

@@ -6,9 +6,7 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use lectern::deck::DeckSession;
-use lectern::reload::Reloaded;
-
-const DEBOUNCE: Duration = Duration::from_millis(50);
+use lectern::reload::{DEBOUNCE, Reloaded};
 
 fn deck_text(titles: &[&str]) -> String {
     let slides: Vec<String> = titles

@@ -267,6 +267,10 @@ fn the_gl_backend_draws_the_goldens_within_their_tolerance() {
         let path = format!("tests/snapshots/scene-{name}.png");
         let want = image::open(&path).unwrap().to_rgba8();
         let failing = common::scene_failing_pixels(&want, &img);
+        eprintln!(
+            "GL {name}: {failing} pixels fail (at most {})",
+            common::scene_max_failed_pixels(&want)
+        );
         if failing > common::scene_max_failed_pixels(&want) {
             img.save(format!("target/gl-scene-{name}.png")).unwrap();
             failed.push(format!("{name}: {failing} pixels"));

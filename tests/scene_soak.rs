@@ -65,8 +65,12 @@ fn on_the_gl_backend_too() {
     soak(|scene, shaders| common::gl_headless("scene_soak", scene, shaders));
 }
 
+/// One soak at a time: resident memory is the process's, which a soak running beside would grow.
+static ONE_AT_A_TIME: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
 /// Runs the soak on the renderer `make` builds (None: skipped, `make` said why).
 fn soak(make: impl FnOnce(scene::Scene, &Path) -> Option<Headless>) {
+    let _alone = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
     let dir = tempfile::tempdir().unwrap();
     let shader_dir = dir.path().join("shaders");
     std::fs::create_dir(&shader_dir).unwrap();

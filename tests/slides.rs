@@ -7,6 +7,8 @@
 //! Regenerate after an intended change (then LOOK at the PNGs before committing):
 //!     UPDATE_SNAPSHOTS=1 cargo test --test slides
 
+mod common;
+
 use std::path::Path;
 use std::sync::Arc;
 use std::sync::atomic::Ordering;
@@ -17,6 +19,8 @@ use lectern::deck::{Block, Deck, Slide, load_deck};
 use lectern::math::{MathSyntax, render_formula};
 use lectern::widgets::scene::SceneGpu;
 use lectern::widgets::work_precision;
+
+use common::text_boxes;
 
 fn deck() -> Deck {
     load_deck(&Path::new(env!("CARGO_MANIFEST_DIR")).join("slides/lecture.ron")).unwrap()
@@ -249,34 +253,6 @@ fn every_coloured_text_is_readable_on_both_themes() {
     }
     failures.dedup();
     assert!(failures.is_empty(), "{}", failures.join("\n"));
-}
-
-/// Every text a slide draws, as (text, screen rect, clip rect).
-fn text_boxes(output: &egui::FullOutput) -> Vec<(String, egui::Rect, egui::Rect)> {
-    use egui::epaint::Shape;
-    fn walk(shape: &Shape, clip: egui::Rect, out: &mut Vec<(String, egui::Rect, egui::Rect)>) {
-        match shape {
-            Shape::Vec(v) => v.iter().for_each(|s| walk(s, clip, out)),
-            // row by row: a label in a wrapping row is laid out from the row's left edge
-            // (its galley's rect covers that leading space), so the rows' own rects are where
-            // the glyphs are
-            Shape::Text(t) if t.angle == 0.0 => {
-                for row in &t.galley.rows {
-                    let text: String = row.row.glyphs.iter().map(|g| g.chr).collect();
-                    if !text.trim().is_empty() {
-                        let rect = row.rect_without_leading_space().translate(t.pos.to_vec2());
-                        out.push((text, rect, clip));
-                    }
-                }
-            }
-            _ => {}
-        }
-    }
-    let mut out = Vec::new();
-    for c in &output.shapes {
-        walk(&c.shape, c.clip_rect, &mut out);
-    }
-    out
 }
 
 /// Every straight piece of every line a slide paints wider than a grid line (one point), in
@@ -533,7 +509,7 @@ fn worst_window(full: &image::RgbaImage, small: &image::RgbaImage) -> (f64, (u32
 }
 
 /// `controls: Presenter`: the slide (projector, export) shows the plot and its values, not the
-/// sliders and checkboxes; the default deck shows them; `force_controls` (the `C` key) brings
+/// sliders and checkboxes; the default deck shows them; `ShowControls::Always` (the `C` key) brings
 /// them back.
 #[test]
 fn controls_presenter_shows_values_not_sliders() {
@@ -547,7 +523,10 @@ fn controls_presenter_shows_values_not_sliders() {
         let mut state = SlideState::default();
         let mut h = Harness::builder().with_size(SIZE).build_ui(move |ui| {
             let options = SlideOptions {
-                force_controls: force,
+                controls: match force {
+                    true => lectern::app::ShowControls::Always,
+                    false => lectern::app::ShowControls::AsDeck,
+                },
                 ..SlideOptions::default()
             };
             slide_ui_with(ui, &d, slope_field, &mut state, options);
@@ -657,7 +636,7 @@ fn scene_pictures_are_large_lined_up_and_captioned_on_one_line() {
                 .collect();
             for caption in scene_columns.iter().flat_map(|col| col.iter()) {
                 if let Block::Text(t) = caption
-                    && !rows.iter().any(|r| r == t.trim())
+                    && !rows.iter().any(|r| r == t.src.trim())
                 {
                     failures.push(format!("{at}: caption {t:?} wraps"));
                 }

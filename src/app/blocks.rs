@@ -11,6 +11,7 @@ use super::inline_text::{Paragraph, paragraph};
 use super::slide_state::SlideState;
 use super::theme::size;
 use crate::deck::Block;
+use crate::math::MathSyntax;
 
 /// Lays out `blocks` in `ui`; `path` is where they sit in the slide (for widget identity).
 pub(crate) fn blocks_ui(
@@ -69,14 +70,19 @@ fn measure(
 ) -> Option<f32> {
     let look = &bctx.look;
     match block {
-        Block::Text(t) => Some(paragraph(ui, t, width, look, Align::Min).size().y),
-        Block::Bullets(items) => {
+        Block::Text(t) => Some(
+            paragraph(ui, written(&t.src, t.latex), width, look, Align::Min)
+                .size()
+                .y,
+        ),
+        Block::Bullets(list) => {
             let indent = look.scaled(bullet_indent());
-            let h: f32 = items
-                .iter()
-                .map(|t| paragraph(ui, t, width - indent, look, Align::Min).size().y)
+            let h: f32 = (list.items.iter())
+                .map(|t| paragraph(ui, written(t, list.latex), width - indent, look, Align::Min))
+                .map(|p| p.size().y)
                 .sum();
-            Some(h + look.scaled(size::BULLET_GAP) * items.len().saturating_sub(1) as f32)
+            let gaps = list.items.len().saturating_sub(1) as f32;
+            Some(h + look.scaled(size::BULLET_GAP) * gaps)
         }
         Block::Math { src, latex } => {
             let view = formula(ui, bctx, path, src, *latex);
@@ -127,13 +133,13 @@ fn block_ui(
     let width = ui.available_width();
     match block {
         Block::Text(t) => {
-            let para = paragraph(ui, t, width, look, align);
+            let para = paragraph(ui, written(&t.src, t.latex), width, look, align);
             let (rect, _) = ui.allocate_exact_size(vec2(width, para.size().y), Sense::hover());
             para.paint(ui.painter(), rect, look.palette.text);
-            let at = format!("{}.0", block_ron_path(bctx.slide_index, path));
-            note_inline_errors(ui, bctx, &at, t, &para, state);
+            let at = block_ron_path(bctx.slide_index, path) + t.tree_suffix();
+            note_inline_errors(ui, bctx, &at, written(&t.src, t.latex), &para, state);
         }
-        Block::Bullets(items) => bullets_ui(ui, items, path, bctx, state),
+        Block::Bullets(list) => bullets_ui(ui, list, path, bctx, state),
         Block::Table { header, rows } => super::table_view::table_ui(ui, header, rows, look),
         Block::Math { src, latex } => math_ui(ui, bctx, path, src, *latex, state),
         Block::Image { path: p, width: w } => {
@@ -228,13 +234,18 @@ fn block_ui(
     }
 }
 
+/// A paragraph's text and the syntax of its `$…$`.
+fn written(text: &str, latex: bool) -> (&str, MathSyntax) {
+    (text, crate::math::deck::syntax_of(latex))
+}
+
 fn bullet_indent() -> f32 {
     size::BODY * 1.1
 }
 
 fn bullets_ui(
     ui: &mut egui::Ui,
-    items: &[String],
+    list: &crate::deck::BulletList,
     path: &[usize],
     bctx: &BlockCtx,
     state: &mut SlideState,
@@ -242,11 +253,17 @@ fn bullets_ui(
     let look = &bctx.look;
     let width = ui.available_width();
     let indent = look.scaled(bullet_indent());
-    for (i, item) in items.iter().enumerate() {
+    for (i, item) in list.items.iter().enumerate() {
         if i > 0 {
             ui.add_space(look.scaled(size::BULLET_GAP));
         }
-        let para = paragraph(ui, item, width - indent, look, Align::Min);
+        let para = paragraph(
+            ui,
+            written(item, list.latex),
+            width - indent,
+            look,
+            Align::Min,
+        );
         let first_row_h = para.first_row_height();
         let (rect, _) = ui.allocate_exact_size(vec2(width, para.size().y), Sense::hover());
         // A small accent square, centred on the first line's x-height.
@@ -261,8 +278,8 @@ fn bullets_ui(
         );
         let text_rect = Rect::from_min_max(rect.min + vec2(indent, 0.0), rect.max);
         para.paint(ui.painter(), text_rect, look.palette.text);
-        let at = format!("{}[{i}]", block_ron_path(bctx.slide_index, path));
-        note_inline_errors(ui, bctx, &at, item, &para, state);
+        let at = block_ron_path(bctx.slide_index, path) + &list.item_tree_suffix(i);
+        note_inline_errors(ui, bctx, &at, written(item, list.latex), &para, state);
     }
 }
 
@@ -272,12 +289,14 @@ fn note_inline_errors(
     ui: &egui::Ui,
     bctx: &BlockCtx,
     ron_path: &str,
-    written: &str,
+    (written, syntax): (&str, MathSyntax),
     para: &Paragraph,
     state: &mut SlideState,
 ) {
     for (start_char, e) in &para.errors {
-        let col = start_char + e.col.unwrap_or(1);
+        // LaTeX is converted before Typst sees it: its columns are not the written ones
+        let col_in_formula = (syntax == MathSyntax::Typst).then_some(e.col).flatten();
+        let col = start_char + col_in_formula.unwrap_or(1);
         let message = crate::math::deck::message(e);
         let line = located_problem(ui.ctx(), bctx, ron_path, written, Some(col), message);
         state.note_problem(line);

@@ -37,14 +37,6 @@ pub(crate) struct FormulaView {
     pub error: Option<crate::math::MathError>,
 }
 
-fn syntax_of(latex: bool) -> crate::math::MathSyntax {
-    if latex {
-        crate::math::MathSyntax::Latex
-    } else {
-        crate::math::MathSyntax::Typst
-    }
-}
-
 /// Formulas are typeset at this many physical pixels per em.
 fn em_px(ctx: &egui::Context, look: &Look) -> f32 {
     look.scaled(size::MATH) * ctx.pixels_per_point()
@@ -75,7 +67,7 @@ pub(crate) fn formula(
         ctx,
         &slot,
         src,
-        syntax_of(latex),
+        crate::math::deck::syntax_of(latex),
         em,
         bctx.look.palette.title,
     );

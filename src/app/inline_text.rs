@@ -107,16 +107,17 @@ impl Style {
     }
 }
 
-/// `text` with its inline markup, wrapped at `width` points and aligned by `align`.
+/// `text` with its inline markup (its `$…$` in `syntax`), wrapped at `width` points and
+/// aligned by `align`.
 pub(crate) fn paragraph(
     ui: &egui::Ui,
-    text: &str,
+    (text, syntax): (&str, MathSyntax),
     width: f32,
     look: &Look,
     align: Align,
 ) -> Paragraph {
     if has_inline_math(text) {
-        runs(ui, text, width, look, align)
+        runs(ui, (text, syntax), width, look, align)
     } else {
         let galley = text_galley(ui, text, width, look, align);
         Paragraph {
@@ -174,7 +175,13 @@ enum Token {
     Newline,
 }
 
-fn runs(ui: &egui::Ui, text: &str, width: f32, look: &Look, align: Align) -> Paragraph {
+fn runs(
+    ui: &egui::Ui,
+    (text, syntax): (&str, MathSyntax),
+    width: f32,
+    look: &Look,
+    align: Align,
+) -> Paragraph {
     let ctx = ui.ctx();
     let style = Style::new(ctx, look);
     let mut errors = Vec::new();
@@ -183,7 +190,7 @@ fn runs(ui: &egui::Ui, text: &str, width: f32, look: &Look, align: Align) -> Par
         if kind == Inline::Math {
             let start = span.as_ptr() as usize - text.as_ptr() as usize;
             let start_char = text[..start].chars().count();
-            match formula_piece(ctx, span, look, &style) {
+            match formula_piece(ctx, (span, syntax), look, &style) {
                 Ok(p) => tokens.push(Token::Piece(p)),
                 Err(e) => {
                     if let Some(e) = e {
@@ -252,7 +259,7 @@ fn word(ui: &egui::Ui, text: &str, format: TextFormat) -> Piece {
 /// still being typeset (live window), `Err(Some(e))` when it does not typeset.
 fn formula_piece(
     ctx: &egui::Context,
-    src: &str,
+    (src, syntax): (&str, MathSyntax),
     look: &Look,
     style: &Style,
 ) -> Result<Piece, Option<MathError>> {
@@ -260,7 +267,7 @@ fn formula_piece(
     let em_px = style.regular.size * ppp;
     let cache = MathCache::shared(ctx);
     let found = match cache.lock() {
-        Ok(mut c) => c.inline(ctx, src, MathSyntax::Typst, em_px, look.palette.text),
+        Ok(mut c) => c.inline(ctx, src, syntax, em_px, look.palette.text),
         Err(_) => None,
     };
     match found {

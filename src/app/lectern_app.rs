@@ -17,7 +17,7 @@ use super::pacing::Pacing;
 use super::scene_mode::SceneMode;
 use super::screens::{MonitorRect, ScreenPlan};
 use super::slide_state::{DeckState, SlideState};
-use super::slide_view::{SlideOptions, black_ui, slide_ui_with};
+use super::slide_view::{ShowControls, SlideOptions, black_ui, slide_ui_with};
 use super::theme::Palette;
 use super::tweaks::Bookmarks;
 use crate::deck::{DeckSession, Nav};
@@ -243,7 +243,10 @@ impl LecternApp {
                     drawing,
                     background: fill,
                     // `C` brings the widgets' controls onto the audience screen
-                    force_controls: self.show_controls,
+                    controls: match self.show_controls {
+                        true => ShowControls::Always,
+                        false => ShowControls::AsDeck,
+                    },
                     ..SlideOptions::default()
                 };
                 let resp = slide_ui_with(ui, deck, index, self.states.slide(slide), options);

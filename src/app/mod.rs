@@ -37,4 +37,4 @@ pub use scene_mode::SceneMode;
 pub use slide_state::{
     DeckState, DrawnWidget, SlideResponse, SlideState, TweakSnapshot, drawn_widgets,
 };
-pub use slide_view::{SlideOptions, slide_ui, slide_ui_with};
+pub use slide_view::{ShowControls, SlideOptions, slide_ui, slide_ui_with};

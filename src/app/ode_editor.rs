@@ -31,17 +31,28 @@ pub fn ode_editor_ui(ui: &mut egui::Ui, state: &mut SlideState) {
     }
 }
 
-/// Height of the presenter's preview of a typed equation, in points.
-const PREVIEW_HEIGHT: f32 = 180.0;
+/// The least height of the presenter's preview of a typed equation, in points; it takes the
+/// rest of the visible control area when that is more.
+const PREVIEW_MIN_HEIGHT: f32 = 180.0;
 
-/// The preview copy of a widget, drawing the drafts' equation (the room does not see it).
+/// The preview copy of a widget, drawing the drafts' equation (the room does not see it): its
+/// plot and values only (the sliders are the presenter's, above), as tall as the control area
+/// leaves, so a typed equation's plot is readable at 1280×720.
 fn preview_ui(ui: &mut egui::Ui, widget: &mut dyn crate::widgets::SlideWidget) {
     ui.label(RichText::new("preview (Enter shows it to the room, Esc reverts):").italics());
     let width = ui.available_width();
-    ui.allocate_ui(egui::vec2(width, PREVIEW_HEIGHT), |ui| {
-        ui.set_max_height(PREVIEW_HEIGHT);
+    let height = (ui.clip_rect().bottom() - ui.cursor().top()).max(PREVIEW_MIN_HEIGHT);
+    let shown = ui.allocate_ui(egui::vec2(width, height), |ui| {
+        ui.set_max_height(height);
+        ui.style_mut().text_styles.insert(
+            egui::TextStyle::Name(crate::widgets::style::NO_CONTROLS_STYLE.into()),
+            egui::FontId::proportional(1.0),
+        );
         ui.push_id("preview", |ui| widget.ui(ui));
     });
+    // named, so its size can be asked for (screen readers, the UI tests)
+    (shown.response)
+        .widget_info(|| egui::WidgetInfo::labeled(egui::Role::Group, true, "equation preview"));
 }
 
 /// The text fields of one widget's equation.
@@ -122,7 +133,8 @@ pub fn equation_ui(ui: &mut egui::Ui, kind: &str, ode: &mut LiveOde) {
             error_ui(ui, &text, &msg, col);
         }
     }
-    if ode.has_draft() {
+    // (a draft that compiles says so above its preview instead)
+    if ode.has_draft() && ode.draft_problem().is_none() {
         ui.label(RichText::new("not shown to the room yet: Enter shows it, Esc reverts").italics());
     }
 }

@@ -74,8 +74,18 @@ pub fn presenter_ui(
     let ratio = deck.aspect.ratio();
     // A slide with live widgets leaves half the height to its controls (sliders and equation
     // fields), so at 1280×720 they are in view without scrolling; one without takes more.
-    let has_controls = (deck.slides.get(index)).is_some_and(|s| !s.widgets().is_empty());
-    let now_share = if has_controls { 0.5 } else { 0.68 };
+    // While a typed equation is previewed, the slide shrinks further: the preview's plot is
+    // what the lecturer reads then (the room's view is unchanged).
+    let now_slide = deck.slides.get(index);
+    let has_controls = now_slide.is_some_and(|s| !s.widgets().is_empty());
+    let typing = now_slide
+        .and_then(|s| states.existing(s))
+        .is_some_and(|s| s.has_preview());
+    let now_share = match (typing, has_controls) {
+        (true, _) => 0.3,
+        (false, true) => 0.5,
+        (false, false) => 0.68,
+    };
     let now_h = (left.width() / ratio).min(left.height() * now_share);
     let now_rect =
         Rect::from_min_size(left.min + vec2(0.0, text * 1.5), vec2(now_h * ratio, now_h));

@@ -1,8 +1,8 @@
 //! Scene mode in the app: owns the water scene's simulation and steps it, takes the mouse
 //! (orbit, zoom, the flee point), reloads `scenes/*.ron` through [`LiveFile`] and `shaders/`
-//! through the renderer (one folder watcher for both, polled on the UI thread), holds the
-//! quality controller, and draws the renderer's output straight into egui's pass over the
-//! window (a paint callback: on a software rasteriser a full-window texture drawn again by
+//! through the [`SceneHost`] (the Scene widget's host too: renderer, folders, one watcher
+//! polled on the UI thread), holds the quality controller, and draws the renderer's output
+//! straight into egui's pass over the window (a paint callback: on a software rasteriser a full-window texture drawn again by
 //! egui cost ~30 ms a frame). The renderer only draws what it is given. Its teaching panel is
 //! in [`super::scene_panel`].
 

@@ -126,6 +126,11 @@ impl SlideState {
     }
 
     /// The widget at block path `path`, if it was made.
+    /// Whether a typed equation's preview was drawn (the presenter then gives it more room).
+    pub fn has_preview(&self) -> bool {
+        !self.previews.is_empty()
+    }
+
     pub fn widget_at(&mut self, path: &[usize]) -> Option<&mut dyn SlideWidget> {
         Some(self.widgets.get_mut(path)?.widget.as_mut())
     }

@@ -30,9 +30,33 @@ pub struct SlideOptions<'a> {
     /// A tool is drawing: the canvas takes every click and drag (see [`SlideResponse::ink`]),
     /// so neither the slide's widgets nor "click to advance" see them.
     pub drawing: bool,
-    /// Draw widgets' controls even when the deck says `controls: Presenter` (the `C` key on a
-    /// single screen).
-    pub force_controls: bool,
+    /// Whether widgets draw their controls: as the deck's `controls:` says, always (the `C`
+    /// key on a single screen) or never (the printed handout).
+    pub controls: ShowControls,
+}
+
+/// Whether a slide's widgets draw their sliders, checkboxes and buttons (see
+/// [`crate::widgets::style::controls_shown`]; where they went is in
+/// [`crate::widgets::controls::control_rects`] after the slide is drawn).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum ShowControls {
+    /// As the deck's `controls:` says: on the slide, or on the presenter's side only.
+    #[default]
+    AsDeck,
+    /// On the slide whatever the deck says.
+    Always,
+    /// Never: plots, legends and values only.
+    Never,
+}
+
+impl ShowControls {
+    fn shown(self, deck: crate::deck::Controls) -> bool {
+        match self {
+            ShowControls::AsDeck => deck == crate::deck::Controls::Slide,
+            ShowControls::Always => true,
+            ShowControls::Never => false,
+        }
+    }
 }
 
 impl Default for SlideOptions<'_> {
@@ -43,7 +67,7 @@ impl Default for SlideOptions<'_> {
             background: true,
             ink: InkView::default(),
             drawing: false,
-            force_controls: false,
+            controls: ShowControls::AsDeck,
         }
     }
 }
@@ -117,7 +141,8 @@ pub fn slide_ui_with(
             .layout(egui::Layout::top_down(Align::Min)),
     );
     let mut style = widget_style(ui.style(), &look, deck.theme);
-    if deck.controls == crate::deck::Controls::Presenter && !options.force_controls {
+    crate::widgets::controls::begin_controls(ui.ctx());
+    if !options.controls.shown(deck.controls) {
         style.text_styles.insert(
             egui::TextStyle::Name(crate::widgets::style::NO_CONTROLS_STYLE.into()),
             egui::FontId::proportional(1.0),

@@ -1,15 +1,17 @@
-//! `lectern export`: render every slide to PNG and/or a PDF handout, headless, through the
-//! window's slide renderer. Exits non-zero when a formula or a widget failed on some slide (the
-//! files are still written) unless `--keep-going`.
+//! `lectern export`: render every slide to PNG and/or a PDF (the slides, a speaker's `--notes`
+//! sheet, or the students' `--handout`), headless, through the window's slide renderer. Exits
+//! non-zero when a formula or a widget failed on some slide (the files are still written)
+//! unless `--keep-going`.
 
 use std::path::PathBuf;
 
 use anyhow::Context as _;
 
-use super::export_pdf::HandoutWriter;
+use super::export_handout;
+use super::export_pdf::{HandoutWriter, Layout};
 use crate::app::ink_draw::InkView;
 use crate::app::tweak_file::TweakFile;
-use crate::app::{OffscreenRenderer, SlideOptions, SlideState};
+use crate::app::{OffscreenRenderer, ShowControls, SlideOptions, SlideState};
 use crate::deck::ink::Ink;
 use crate::deck::{InkFile, load_deck};
 
@@ -30,6 +32,14 @@ pub struct Args {
     /// text that can be searched and copied).
     #[arg(long, requires = "pdf")]
     pub notes: bool,
+    /// PDF handout for students: A4 pages with 2 or 3 slides each (`--per-page`), in the light
+    /// theme whatever the deck's, widgets without their controls, and under each slide its
+    /// `handout:` text (never the speaker notes). Pictures at print size (`--size` overrides).
+    #[arg(long, requires = "pdf", conflicts_with_all = ["notes", "out"])]
+    pub handout: bool,
+    /// Slides on each handout page, 2 or 3 [default: 2].
+    #[arg(long, requires = "handout", value_parser = clap::value_parser!(u8).range(2..=3))]
+    pub per_page: Option<u8>,
     /// Image size in pixels, WIDTHxHEIGHT [default: 1920 wide, at the deck's aspect].
     #[arg(long, value_parser = parse_size)]
     pub size: Option<[u32; 2]>,
@@ -76,8 +86,27 @@ pub fn parse_size(s: &str) -> Result<[u32; 2], String> {
 
 pub fn run(args: Args) -> anyhow::Result<()> {
     let path = args.deck.unwrap_or_else(super::present::default_deck);
-    let deck = load_deck(&path).map_err(|d| anyhow::anyhow!("{d}"))?;
-    let size = args.size.unwrap_or_else(|| default_size(deck.aspect));
+    let mut deck = load_deck(&path).map_err(|d| anyhow::anyhow!("{d}"))?;
+    let layout = if args.handout {
+        Layout::Handout {
+            per_page: (args.per_page).unwrap_or(export_handout::DEFAULT_PER_PAGE),
+        }
+    } else if args.notes {
+        Layout::Notes
+    } else {
+        Layout::Slides
+    };
+    if let Layout::Handout { per_page } = layout {
+        for warning in export_handout::prepare(&mut deck, per_page) {
+            eprintln!("lectern: warning: {warning}");
+        }
+    }
+    let size = args.size.unwrap_or_else(|| match layout {
+        Layout::Handout { per_page } => {
+            export_handout::picture_size_px(deck.aspect.ratio(), per_page)
+        }
+        Layout::Slides | Layout::Notes => default_size(deck.aspect),
+    });
     let tweaks = match &args.with_tweaks {
         Some(file) => TweakFile::load(file).map_err(|d| anyhow::anyhow!("{d}"))?,
         None => TweakFile::default(),
@@ -108,7 +137,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     if let Some(out) = &args.out {
         std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
     }
-    let mut handout = args.pdf.clone().map(|p| HandoutWriter::new(p, args.notes));
+    let mut handout = args.pdf.clone().map(|p| HandoutWriter::new(p, layout));
     let digits = deck.slides.len().to_string().len().max(2);
     let mut failures: Vec<String> = (deck.broken_slides.iter())
         .map(|b| format!("{} (exported as an error slide)", b.diagnostic))
@@ -123,9 +152,25 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 strokes: ink.strokes(deck.slides[index].key()),
                 ..InkView::default()
             },
+            // plots, legends and values: a slider cannot be dragged on paper
+            controls: match layout {
+                Layout::Handout { .. } => ShowControls::Never,
+                Layout::Slides | Layout::Notes => ShowControls::AsDeck,
+            },
             ..SlideOptions::default()
         };
         let image = renderer.render_slide_with(&deck, index, &mut state, size, options)?;
+        let controls = crate::widgets::controls::control_rects(renderer.egui_ctx());
+        if matches!(layout, Layout::Handout { .. }) && !controls.is_empty() {
+            // a widget that calls `controls::control` where controls are hidden
+            failures.push(format!(
+                "{}: slide {} ({:?}): {} control(s) drawn in the handout's picture",
+                path.display(),
+                index + 1,
+                slide.key(),
+                controls.len()
+            ));
+        }
         // e.g. a formula stopped at its time budget: the slide shows its source instead
         for problem in state.problems() {
             failures.push(format!(
@@ -150,10 +195,15 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         wrote.push(format!("{} PNGs to {}", deck.slides.len(), out.display()));
     }
     if let Some(h) = handout {
-        let (file, layout) = (h.path.clone(), h.layout);
+        let file = h.path.clone();
         let pages = h.finish(&deck.title).map_err(anyhow::Error::msg)?;
+        let shape = match layout {
+            Layout::Slides => "slides".to_owned(),
+            Layout::Notes => "slides with notes".to_owned(),
+            Layout::Handout { per_page } => format!("handout, {per_page} slides a page"),
+        };
         wrote.push(format!(
-            "a {pages}-page PDF ({layout:?}) to {}",
+            "a {pages}-page PDF ({shape}) to {}",
             file.display()
         ));
     }

@@ -1,10 +1,11 @@
-//! The PDF handout: one page per slide, from the very PNGs `lectern export` renders, laid out by
+//! The PDF: one page per slide, from the very pictures `lectern export` renders, laid out by
 //! Typst and written by `typst-pdf` (the Typst we already build for the maths, plus its PDF
-//! backend). With notes, each page is an A4 handout: the slide on top, its speaker notes below as
-//! real text (embedded, subsetted fonts with Unicode mappings, so ẋ, ω, ² can be searched and
-//! copied).
+//! backend). With notes, each page is an A4 sheet for the speaker: the slide on top, its speaker
+//! notes below as real text (embedded, subsetted fonts with Unicode mappings, so ẋ, ω, ² can be
+//! searched and copied). The students' handout (2 or 3 slides a page with their `handout:`
+//! text) is laid out by [`super::export_handout`].
 //!
-//! The slide images and the notes reach Typst as files of an in-memory world and are read with
+//! The slide images and the texts reach Typst as files of an in-memory world and are read with
 //! `image(..)` and `read(..)`: no text from the deck is ever parsed as Typst markup, so notes
 //! may hold `#`, `$`, `*` or `]` freely.
 
@@ -19,14 +20,37 @@ use typst::utils::LazyHash;
 use typst::{Library, LibraryExt, World};
 use typst_layout::PagedDocument;
 
-/// One slide of the handout.
+/// One slide of the PDF.
 pub struct HandoutPage {
-    /// The rendered slide, encoded (PNG).
-    pub image_png: Vec<u8>,
+    /// The rendered slide, encoded as `image_format` says.
+    pub image: Vec<u8>,
+    pub image_format: ImageFormat,
     /// Pixel size of the image: the page takes its aspect.
     pub size_px: [u32; 2],
     pub title: String,
     pub notes: String,
+    /// The words for students (`handout:`), printed by [`Layout::Handout`] only.
+    pub handout: String,
+}
+
+/// How a slide picture is embedded.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ImageFormat {
+    /// Lossless: the slide PDFs, whose pictures are the PNGs `--out` writes.
+    Png,
+    /// The students' handout: light slides at print size are a sixth of their PNG (see
+    /// `docs/benchmarks/check-export.md`).
+    Jpeg,
+}
+
+impl ImageFormat {
+    /// The file extension Typst reads the format from.
+    pub fn extension(self) -> &'static str {
+        match self {
+            ImageFormat::Png => "png",
+            ImageFormat::Jpeg => "jpg",
+        }
+    }
 }
 
 /// Page layout.
@@ -36,6 +60,9 @@ pub enum Layout {
     Slides,
     /// A4 portrait: the slide on top, "Slide n of N: title", then the speaker notes.
     Notes,
+    /// A4 portrait for students: `per_page` slides (2 or 3) a page, each with its `handout:`
+    /// text below it; the deck's title on top, page numbers at the foot.
+    Handout { per_page: u8 },
 }
 
 /// Width of a slide page: 10 in (720 pt); a 1920-pixel slide prints at 192 dpi.
@@ -54,6 +81,7 @@ pub fn handout_pdf(pages: &[HandoutPage], title: &str, layout: Layout) -> Result
     );
     match layout {
         Layout::Slides => {}
+        Layout::Handout { .. } => main.push_str(&super::export_handout::preamble()),
         Layout::Notes => main.push_str(
             "#set page(paper: \"a4\", margin: (x: 18mm, y: 16mm))\n\
              #set par(justify: false, leading: 0.6em, spacing: 1.0em)\n",
@@ -62,7 +90,8 @@ pub fn handout_pdf(pages: &[HandoutPage], title: &str, layout: Layout) -> Result
     let n = pages.len();
     for (i, page) in pages.iter().enumerate() {
         let k = i + 1;
-        files.insert(format!("slide-{k}.png"), Bytes::new(page.image_png.clone()));
+        let image = format!("slide-{k}.{}", page.image_format.extension());
+        files.insert(image.clone(), Bytes::new(page.image.clone()));
         files.insert(
             format!("title-{k}.txt"),
             Bytes::new(page.title.as_bytes().to_vec()),
@@ -71,6 +100,19 @@ pub fn handout_pdf(pages: &[HandoutPage], title: &str, layout: Layout) -> Result
             format!("notes-{k}.txt"),
             Bytes::new(page.notes.trim().as_bytes().to_vec()),
         );
+        files.insert(
+            format!("handout-{k}.txt"),
+            Bytes::new(page.handout.trim().as_bytes().to_vec()),
+        );
+        if let Layout::Handout { per_page } = layout {
+            main.push_str(&super::export_handout::slot(
+                k,
+                &image,
+                page.size_px,
+                per_page,
+            ));
+            continue;
+        }
         if i > 0 {
             main.push_str("#pagebreak()\n");
         }
@@ -80,14 +122,15 @@ pub fn handout_pdf(pages: &[HandoutPage], title: &str, layout: Layout) -> Result
                 let height_pt = SLIDE_PAGE_WIDTH_PT * h / w;
                 main.push_str(&format!(
                     "#set page(width: {SLIDE_PAGE_WIDTH_PT}pt, height: {height_pt:.3}pt, margin: 0pt)\n\
-                     #image(\"/slide-{k}.png\", width: 100%, height: 100%, fit: \"stretch\")\n"
+                     #image(\"/{image}\", width: 100%, height: 100%, fit: \"stretch\")\n"
                 ));
             }
             Layout::Notes => main.push_str(&format!(
-                "#block(stroke: 0.5pt + luma(60%), image(\"/slide-{k}.png\", width: 100%))\n\
+                "#block(stroke: 0.5pt + luma(60%), image(\"/{image}\", width: 100%))\n\
                  #text(size: 9pt, fill: luma(35%))[Slide {k} of {n}: #read(\"/title-{k}.txt\")]\n\n\
                  #read(\"/notes-{k}.txt\")\n"
             )),
+            Layout::Handout { .. } => {}
         }
     }
     let world = HandoutWorld {
@@ -175,30 +218,38 @@ pub struct HandoutWriter {
 }
 
 impl HandoutWriter {
-    pub fn new(path: std::path::PathBuf, notes: bool) -> Self {
+    pub fn new(path: std::path::PathBuf, layout: Layout) -> Self {
         Self {
             path,
-            layout: if notes { Layout::Notes } else { Layout::Slides },
+            layout,
             pages: Vec::new(),
         }
     }
 
-    /// Adds the rendered `image` of `slide` as the next page.
+    /// Adds the rendered `image` of `slide` as the next page (the students' handout embeds it
+    /// as JPEG, the other layouts as PNG).
     pub fn push(
         &mut self,
         image: &image::RgbaImage,
         slide: &crate::deck::Slide,
     ) -> Result<(), String> {
+        let (bytes, image_format) = match self.layout {
+            Layout::Handout { .. } => (super::export_handout::jpeg(image)?, ImageFormat::Jpeg),
+            Layout::Slides | Layout::Notes => (png_rgb(image)?, ImageFormat::Png),
+        };
         self.pages.push(HandoutPage {
-            image_png: png_rgb(image)?,
+            image: bytes,
+            image_format,
             size_px: [image.width(), image.height()],
             title: slide.title.clone(),
             notes: slide.notes.clone(),
+            handout: slide.handout.clone(),
         });
         Ok(())
     }
 
-    /// Lays out and writes the PDF (temp file + rename, so a reader never sees half a file).
+    /// Lays out and writes the PDF (temp file + rename, so a reader never sees half a file);
+    /// its number of pages.
     pub fn finish(self, title: &str) -> Result<usize, String> {
         let bytes = handout_pdf(&self.pages, title, self.layout)?;
         let name = self
@@ -213,7 +264,10 @@ impl HandoutWriter {
                 let _ = std::fs::remove_file(&tmp);
                 format!("cannot write {}: {e}", self.path.display())
             })?;
-        Ok(self.pages.len())
+        Ok(match self.layout {
+            Layout::Handout { per_page } => self.pages.len().div_ceil(usize::from(per_page.max(1))),
+            Layout::Slides | Layout::Notes => self.pages.len(),
+        })
     }
 }
 
@@ -233,10 +287,12 @@ mod tests {
     fn page(colour: [u8; 4], notes: &str) -> HandoutPage {
         let img = image::RgbaImage::from_pixel(64, 36, image::Rgba(colour));
         HandoutPage {
-            image_png: png_rgb(&img).unwrap(),
+            image: png_rgb(&img).unwrap(),
+            image_format: ImageFormat::Png,
             size_px: [64, 36],
             title: "A #title with $ and ]".into(),
             notes: notes.into(),
+            handout: format!("for students: {notes}"),
         }
     }
 
@@ -258,6 +314,13 @@ mod tests {
             let pdf = handout_pdf(&pages, "Handout", layout).unwrap();
             assert!(pdf.starts_with(b"%PDF-"), "{layout:?}");
             assert_eq!(count(&pdf, b"/Type/Pages/Count 3/"), 1, "{layout:?}");
+        }
+        // 2 a page: 3 slides on 2 pages; 3 a page: on 1; 4 slides at 3 a page: on 2
+        let four: Vec<HandoutPage> = (0..4).map(|_| page([90, 90, 90, 255], "n")).collect();
+        for (pages, per_page, want) in [(&pages[..], 2, 2), (&pages[..], 3, 1), (&four[..], 3, 2)] {
+            let pdf = handout_pdf(pages, "Handout", Layout::Handout { per_page }).unwrap();
+            let want = format!("/Type/Pages/Count {want}/");
+            assert_eq!(count(&pdf, want.as_bytes()), 1, "{per_page} a page");
         }
     }
 

@@ -5,6 +5,7 @@ pub mod check;
 pub mod check_deck;
 pub mod export;
 pub mod export_data;
+pub mod export_handout;
 pub mod export_pdf;
 pub mod inertia;
 pub mod new;

@@ -83,9 +83,10 @@ pub fn error_slide(node: Option<&Node>, broken: &BrokenSlide) -> Slide {
         layout: Default::default(),
         body: vec![
             Block::Text("This slide does not load; every other slide does.".into()),
-            Block::Text(broken.diagnostic.to_string()),
+            Block::Text(broken.diagnostic.to_string().into()),
         ],
         notes: format!("Fix the file and save: {}", broken.diagnostic),
+        handout: String::new(),
         seconds: None,
         skip: false,
     }

@@ -9,6 +9,7 @@ mod load;
 pub mod markup;
 mod model;
 pub mod nav;
+mod prose;
 mod session;
 pub mod widgets;
 pub mod write_back;
@@ -20,4 +21,5 @@ pub use model::{
     WidgetProblem, block_tree_path,
 };
 pub use nav::Nav;
+pub use prose::{BulletList, Prose};
 pub use session::DeckSession;

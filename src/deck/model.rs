@@ -5,6 +5,7 @@ use std::path::PathBuf;
 
 use serde::{Deserialize, Serialize};
 
+use super::prose::{BulletList, Prose};
 use super::widgets::WidgetSpec;
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -111,6 +112,10 @@ pub struct Slide {
     /// Speaker notes, shown on the presenter side only.
     #[serde(default)]
     pub notes: String,
+    /// Words for students, printed under the slide in the handout (`export --handout`); kept
+    /// apart from the speaker notes, which never reach the handout.
+    #[serde(default)]
+    pub handout: String,
     /// Planned time for this slide.
     #[serde(default)]
     pub seconds: Option<f32>,
@@ -191,10 +196,22 @@ pub const IMAGE_WIDTH_RANGE: std::ops::RangeInclusive<f32> = 0.05..=1.0;
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub enum Block {
-    /// A paragraph.
-    Text(String),
-    /// A bulleted list.
-    Bullets(Vec<String>),
+    /// A paragraph: `Text("..")`, or `Text((src: "..", latex: true))` for LaTeX `$…$`.
+    Text(
+        #[serde(
+            deserialize_with = "super::prose::deserialize_prose",
+            serialize_with = "super::prose::serialize_prose"
+        )]
+        Prose,
+    ),
+    /// A bulleted list: `Bullets([..])`, or `Bullets((items: [..], latex: true))`.
+    Bullets(
+        #[serde(
+            deserialize_with = "super::prose::deserialize_bullets",
+            serialize_with = "super::prose::serialize_bullets"
+        )]
+        BulletList,
+    ),
     /// Display maths (Typst syntax by default; `latex: true` for LaTeX input).
     Math {
         src: String,

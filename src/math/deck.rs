@@ -52,6 +52,15 @@ impl DeckFormula<'_> {
     }
 }
 
+/// `latex: true` on a block: its formulas are LaTeX.
+pub fn syntax_of(latex: bool) -> MathSyntax {
+    if latex {
+        MathSyntax::Latex
+    } else {
+        MathSyntax::Typst
+    }
+}
+
 /// The [`ron_tree`] path of the block at `path` on slide `slide`.
 fn block_path(slide: usize, path: &[usize]) -> String {
     let mut p = format!("slides[{slide}].body");
@@ -67,12 +76,12 @@ pub fn ron_path(slide: usize, path: &[usize]) -> String {
 }
 
 /// Every formula of `slides` (all of them when `None`), in reading order. Inline ones
-/// (`$…$`) are Typst: a paragraph has no `latex` switch.
+/// (`$…$`) are Typst unless their block has `latex: true`.
 pub fn formulas(deck: &Deck, slides: Option<std::ops::Range<usize>>) -> Vec<DeckFormula<'_>> {
     fn inline<'a>(
         slide: usize,
         path: &[usize],
-        written: &'a str,
+        (written, latex): (&'a str, bool),
         written_at: String,
         out: &mut Vec<DeckFormula<'a>>,
     ) {
@@ -81,7 +90,7 @@ pub fn formulas(deck: &Deck, slides: Option<std::ops::Range<usize>>) -> Vec<Deck
                 slide,
                 path: path.to_vec(),
                 src,
-                syntax: MathSyntax::Typst,
+                syntax: syntax_of(latex),
                 style: MathStyle::Inline,
                 written,
                 written_at: written_at.clone(),
@@ -102,22 +111,20 @@ pub fn formulas(deck: &Deck, slides: Option<std::ops::Range<usize>>) -> Vec<Deck
                     slide,
                     path: path.clone(),
                     src,
-                    syntax: if *latex {
-                        MathSyntax::Latex
-                    } else {
-                        MathSyntax::Typst
-                    },
+                    syntax: syntax_of(*latex),
                     style: MathStyle::Display,
                     written: src,
                     written_at: ron_path(slide, path),
                     start_char: 0,
                 }),
-                // `.0`: the string inside `Text(..)`
-                Block::Text(t) => inline(slide, path, t, block_path(slide, path) + ".0", out),
-                Block::Bullets(items) => {
-                    for (k, t) in items.iter().enumerate() {
-                        let at = format!("{}[{k}]", block_path(slide, path));
-                        inline(slide, path, t, at, out);
+                Block::Text(t) => {
+                    let at = block_path(slide, path) + t.tree_suffix();
+                    inline(slide, path, (&t.src, t.latex), at, out)
+                }
+                Block::Bullets(list) => {
+                    for (k, t) in list.items.iter().enumerate() {
+                        let at = block_path(slide, path) + &list.item_tree_suffix(k);
+                        inline(slide, path, (t, list.latex), at, out);
                     }
                 }
                 Block::Columns(cols) => {

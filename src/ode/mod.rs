@@ -15,6 +15,8 @@ pub mod pairs;
 pub mod problem;
 pub mod solve;
 pub mod stability;
+pub mod stability_box;
+pub mod stability_fn;
 pub mod stability_region;
 pub mod stiff;
 pub mod study;

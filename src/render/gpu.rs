@@ -36,6 +36,27 @@ impl UncapturedErrors {
     }
 }
 
+/// What an error scope caught: waited for natively; in a browser taken only if already known
+/// (WebGL2 runs wgpu's own validation, which answers at once; a browser's WebGPU answers later,
+/// and its errors then reach the uncaptured-error handler instead). No blocking on wasm.
+pub fn scope_result(
+    pending: impl std::future::Future<Output = Option<wgpu::Error>>,
+) -> Option<wgpu::Error> {
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        pollster::block_on(pending)
+    }
+    #[cfg(target_arch = "wasm32")]
+    {
+        let mut pending = std::pin::pin!(pending);
+        let mut cx = std::task::Context::from_waker(std::task::Waker::noop());
+        match pending.as_mut().poll(&mut cx) {
+            std::task::Poll::Ready(e) => e,
+            std::task::Poll::Pending => None,
+        }
+    }
+}
+
 pub struct Gpu {
     pub device: wgpu::Device,
     pub queue: wgpu::Queue,

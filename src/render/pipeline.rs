@@ -236,7 +236,7 @@ pub fn build<T: Technique>(env: &BuildEnv, path: &Path) -> Result<T, Vec<Diagnos
             source: wgpu::ShaderSource::Wgsl(shader.src.text.as_str().into()),
         });
     let built = T::build(&ctx, &module);
-    let scoped = pollster::block_on(scope.pop());
+    let scoped = super::gpu::scope_result(scope.pop());
     let problems = ctx.problems.into_inner();
     if !problems.is_empty() {
         // our own findings carry positions; wgpu's message for the same fault would not

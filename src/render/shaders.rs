@@ -80,8 +80,9 @@ pub fn load(path: &Path) -> Result<ShaderSource, Diagnostic> {
     })
 }
 
+/// Through the project's file source (disk, or the web player's bundle), like every project file.
 fn read(path: &Path) -> Result<String, Diagnostic> {
-    std::fs::read_to_string(path)
+    crate::project_files::read_to_string(path)
         .map_err(|e| Diagnostic::whole_file(path, format!("cannot read shader: {e}")))
 }
 

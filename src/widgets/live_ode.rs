@@ -153,17 +153,22 @@ impl LiveOde {
     }
 
     /// One slider per parameter of the equation, id = its name, range from the file's `ranges`
-    /// or around the file's value.
+    /// or around the file's value; one the shown equation (rhs or exact) no longer names is
+    /// marked [`Param::unused`].
     pub fn params(&mut self) -> Vec<Param<'_>> {
         let (Some(def), Some(file_def)) = (self.def.as_mut(), self.file_def.as_ref()) else {
             return Vec::new();
         };
+        let mut written = def.rhs.clone();
+        written.extend(def.exact.iter().flatten().cloned());
         def.params
             .iter_mut()
             .map(|(name, value)| {
                 let (lo, hi) = file_def.range_of(name);
+                let unused = !crate::ode::expr::mentions(&written, name);
                 Param::f64(name.clone(), name.clone(), value, lo, hi)
                     .writing_to(WriteTo::OdeParam(name.clone()))
+                    .unused(unused)
             })
             .collect()
     }
@@ -596,6 +601,29 @@ mod tests {
         assert_eq!(pretty_expr("exp(-k*t) + sin(w*t)"), "exp(−k·t) + sin(w·t)");
         assert_eq!(pretty_expr("2*pi*x^2.5"), "2·π·x^2.5");
         assert_eq!(live.label(), "ẏ = lambda·y");
+    }
+
+    /// A parameter the typed equation no longer names keeps its slider (bookmarks, tweaks and
+    /// write-back still find it), marked unused; typing it back in clears the mark.
+    #[test]
+    fn a_parameter_the_typed_equation_drops_is_marked_unused() {
+        let src: OdeSource = ron::from_str(
+            r#"Inline((vars: ["x"], rhs: ["-k*x"], params: {"k": 1.0, "ω": 2.0}, initial: [1.0]))"#,
+        )
+        .unwrap();
+        let mut live = LiveOde::new(&src, None);
+        let unused = |live: &mut LiveOde| -> Vec<(String, bool)> {
+            live.params()
+                .iter()
+                .map(|p| (p.id.clone(), p.unused))
+                .collect()
+        };
+        let pair = |k: bool, w: bool| vec![("k".to_string(), k), ("ω".to_string(), w)];
+        assert_eq!(unused(&mut live), pair(false, true));
+        assert!(live.set_expr(ExprSlot::Rhs(0), "-omega^2*x"));
+        assert_eq!(unused(&mut live), pair(true, false));
+        assert!(live.set_expr(ExprSlot::Rhs(0), "-k*omega*x"));
+        assert_eq!(unused(&mut live), pair(false, false));
     }
 
     /// The reload path (`carry_from` re-typing with `set_expr`) follows Enter's rule: a typed

@@ -53,6 +53,7 @@ macro_rules! ode_plumbing {
 }
 
 pub mod colors;
+pub mod controls;
 pub mod convergence;
 pub mod energy;
 pub mod labels;

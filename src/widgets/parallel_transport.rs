@@ -294,16 +294,7 @@ impl SlideWidget for ParallelTransport {
         self.spec.step = self.spec.step.min(n - 2);
         ui.horizontal_wrapped(|ui| {
             for shape in PathShape::ALL {
-                if !style::controls_shown(ui) {
-                    if self.spec.path == shape {
-                        ui.label(shape.label());
-                    }
-                    continue;
-                }
-                if ui
-                    .selectable_label(self.spec.path == shape, shape.label())
-                    .clicked()
-                {
+                if style::choice(ui, self.spec.path == shape, shape.label()) {
                     self.spec.path = shape;
                     self.spec.step = 0;
                 }

@@ -28,6 +28,9 @@ pub struct Param<'a> {
     pub value: ParamValue<'a>,
     /// Where Ctrl+S writes the value.
     pub write: WriteTo,
+    /// An equation's parameter its (typed) equation no longer names: the slider stays, for
+    /// bookmarks, write-back and typing the name back in, but greyed and marked "unused".
+    pub unused: bool,
 }
 
 /// Where a parameter lives in the files, for write-back.
@@ -77,6 +80,7 @@ impl<'a> Param<'a> {
             id: id.into(),
             label: label.into(),
             write: WriteTo::Spec,
+            unused: false,
             value: ParamValue::F64 {
                 value,
                 min,
@@ -96,6 +100,7 @@ impl<'a> Param<'a> {
             id: id.into(),
             label: label.into(),
             write: WriteTo::Spec,
+            unused: false,
             value: ParamValue::F64 {
                 value,
                 min,
@@ -109,6 +114,7 @@ impl<'a> Param<'a> {
             id: id.into(),
             label: label.into(),
             write: WriteTo::Spec,
+            unused: false,
             value: ParamValue::Bool(value),
         }
     }
@@ -123,6 +129,7 @@ impl<'a> Param<'a> {
             id: id.into(),
             label: label.into(),
             write: WriteTo::Spec,
+            unused: false,
             value: ParamValue::Usize { value, min, max },
         }
     }
@@ -164,9 +171,22 @@ impl<'a> Param<'a> {
         Ok(())
     }
 
-    /// A control for this parameter (slider or checkbox), as the presenter view shows it.
+    /// Marks it unused by the equation (see [`Param::unused`]).
+    pub fn unused(mut self, unused: bool) -> Self {
+        self.unused = unused;
+        self
+    }
+
+    /// A control for this parameter (slider or checkbox), as the presenter view shows it; an
+    /// unused one greyed, with "unused" after its label.
     pub fn ui(&mut self, ui: &mut egui::Ui) -> egui::Response {
-        match &mut self.value {
+        let label = if self.unused {
+            format!("{} (unused by the equation)", self.label)
+        } else {
+            self.label.clone()
+        };
+        let value = &mut self.value;
+        ui.add_enabled_ui(!self.unused, |ui| match value {
             ParamValue::F64 {
                 value,
                 min,
@@ -175,13 +195,14 @@ impl<'a> Param<'a> {
             } => ui.add(
                 egui::Slider::new(&mut **value, *min..=*max)
                     .logarithmic(*log)
-                    .text(self.label.as_str()),
+                    .text(label),
             ),
-            ParamValue::Bool(v) => ui.checkbox(v, self.label.as_str()),
+            ParamValue::Bool(v) => ui.checkbox(v, label),
             ParamValue::Usize { value, min, max } => {
-                ui.add(egui::Slider::new(&mut **value, *min..=*max).text(self.label.as_str()))
+                ui.add(egui::Slider::new(&mut **value, *min..=*max).text(label))
             }
-        }
+        })
+        .inner
     }
 }
 

@@ -317,16 +317,11 @@ impl SlideWidget for RigidBodyView {
     fn ui(&mut self, ui: &mut egui::Ui) {
         style::projector_text(ui);
         ui.horizontal(|ui| {
-            if style::controls_shown(ui) {
-                if ui
-                    .button(if self.spec.playing { "pause" } else { "play" })
-                    .clicked()
-                {
-                    self.spec.playing = !self.spec.playing;
-                }
-                if ui.button("restart").clicked() {
-                    self.spec.t = 0.0;
-                }
+            if style::button(ui, if self.spec.playing { "pause" } else { "play" }) {
+                self.spec.playing = !self.spec.playing;
+            }
+            if style::button(ui, "restart") {
+                self.spec.t = 0.0;
             }
             style::slider(ui, &mut self.spec.h, 0.002..=0.2, "h", true);
             style::slider(ui, &mut self.spec.n, 1..=N_MAX, "points per axis", false);

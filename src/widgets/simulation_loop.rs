@@ -327,11 +327,10 @@ impl SlideWidget for SimulationLoop {
         ui.set_max_width(ui.available_width());
         ui.horizontal_wrapped(|ui| {
             let label = if self.spec.playing { "pause" } else { "play" };
-            let controls = style::controls_shown(ui);
-            if controls && ui.button(label).clicked() {
+            if style::button(ui, label) {
                 self.spec.playing = !self.spec.playing;
             }
-            if controls && ui.button("restart").clicked() {
+            if style::button(ui, "restart") {
                 self.world = None; // the body again as the scene file starts it
             }
             let current = self.spec.integrator.or(match &self.world {
@@ -345,13 +344,7 @@ impl SlideWidget for SimulationLoop {
                     false => style::text_color(ui, style::integrator_color(m)),
                 };
                 let text = egui::RichText::new(m.name()).color(color);
-                if !controls {
-                    if on {
-                        ui.label(text);
-                    }
-                    continue;
-                }
-                if ui.selectable_label(on, text).clicked() {
+                if style::choice(ui, on, text) {
                     self.spec.integrator = Some(m);
                 }
             }

@@ -6,6 +6,7 @@ use egui_plot::{Arrows, Line, PlotPoint, PlotPoints, Points};
 
 use std::path::Path as FsPath;
 
+use super::controls;
 use super::labels;
 use super::live_ode::LiveOde;
 use super::methods::fixed_path;
@@ -237,7 +238,7 @@ impl SlideWidget for StepConstruction {
                     }
                     continue;
                 }
-                if ui.selectable_label(m == c, text).clicked() {
+                if controls::control(ui, |ui| ui.selectable_label(m == c, text)).clicked() {
                     self.spec.method = c.reference();
                     self.spec.stage = 0;
                 }

@@ -259,16 +259,36 @@ pub fn h_slider(ui: &mut egui::Ui, h: &mut f64, range: (f64, f64)) {
     slider(ui, h, range.0..=range.1, "h", true);
 }
 
-/// A text style only slides drawn with `controls: Presenter` define: widgets then show their
-/// values, not their sliders, checkboxes and buttons (the presenter view has those).
+/// A text style only slides drawn without controls define (`controls: Presenter`, where the
+/// presenter view has them, and the printed handout): widgets then show their values, not
+/// their sliders, checkboxes and buttons.
 pub const NO_CONTROLS_STYLE: &str = "lectern-no-controls";
 
 /// Whether widgets in `ui` draw their controls (sliders, checkboxes, buttons). With the
-/// deck's `controls: Presenter` the audience sees the plot and the values only.
+/// deck's `controls: Presenter` the audience sees the plot and the values only (and so does
+/// the printed handout).
 pub fn controls_shown(ui: &egui::Ui) -> bool {
     !ui.style()
         .text_styles
         .contains_key(&egui::TextStyle::Name(NO_CONTROLS_STYLE.into()))
+}
+
+/// A button that is on the slide only with its controls; whether it was clicked.
+pub fn button(ui: &mut egui::Ui, text: &str) -> bool {
+    controls_shown(ui) && super::controls::control(ui, |ui| ui.button(text)).clicked()
+}
+
+/// One of a set of choices (a selectable label), or where controls are hidden, its text when
+/// it is the chosen one and nothing otherwise; whether it was clicked.
+pub fn choice(ui: &mut egui::Ui, selected: bool, text: impl Into<egui::WidgetText>) -> bool {
+    if controls_shown(ui) {
+        super::controls::control(ui, |ui| ui.selectable_label(selected, text)).clicked()
+    } else {
+        if selected {
+            ui.label(text);
+        }
+        false
+    }
 }
 
 /// A slider labelled `label` (a key hint after two spaces, `"stage  [ ]"`, is dropped from
@@ -281,11 +301,13 @@ pub fn slider<N: egui::emath::Numeric>(
     logarithmic: bool,
 ) {
     if controls_shown(ui) {
-        ui.add(
-            egui::Slider::new(value, range)
-                .logarithmic(logarithmic)
-                .text(label),
-        );
+        super::controls::control(ui, |ui| {
+            ui.add(
+                egui::Slider::new(value, range)
+                    .logarithmic(logarithmic)
+                    .text(label),
+            )
+        });
     } else {
         let name = label.split("  ").next().unwrap_or(label);
         let v = value.to_f64();
@@ -302,7 +324,7 @@ pub fn slider<N: egui::emath::Numeric>(
 /// entry) and nothing when it is off.
 pub fn toggle(ui: &mut egui::Ui, on: &mut bool, text: egui::RichText) {
     if controls_shown(ui) {
-        ui.checkbox(on, text);
+        super::controls::control(ui, |ui| ui.checkbox(on, text));
     } else if *on {
         ui.label(text);
     }

@@ -92,3 +92,31 @@ pub fn gl_headless(
     let caps = lectern::render::caps::RenderCaps::decide(&gpu.caps);
     Some(lectern::render::Headless::with_gpu(gpu, caps, scene, shaders).unwrap())
 }
+
+/// Every text a slide draws, as (text, screen rect, clip rect).
+pub fn text_boxes(output: &egui::FullOutput) -> Vec<(String, egui::Rect, egui::Rect)> {
+    use egui::epaint::Shape;
+    fn walk(shape: &Shape, clip: egui::Rect, out: &mut Vec<(String, egui::Rect, egui::Rect)>) {
+        match shape {
+            Shape::Vec(v) => v.iter().for_each(|s| walk(s, clip, out)),
+            // row by row: a label in a wrapping row is laid out from the row's left edge
+            // (its galley's rect covers that leading space), so the rows' own rects are where
+            // the glyphs are
+            Shape::Text(t) if t.angle == 0.0 => {
+                for row in &t.galley.rows {
+                    let text: String = row.row.glyphs.iter().map(|g| g.chr).collect();
+                    if !text.trim().is_empty() {
+                        let rect = row.rect_without_leading_space().translate(t.pos.to_vec2());
+                        out.push((text, rect, clip));
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    let mut out = Vec::new();
+    for c in &output.shapes {
+        walk(&c.shape, c.clip_rect, &mut out);
+    }
+    out
+}

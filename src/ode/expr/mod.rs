@@ -10,6 +10,13 @@ pub use derive::derivatives;
 pub use parse::{ExprError, Node, Scope, is_reserved, parse};
 pub use program::Program;
 
+/// Whether any of `exprs` names `param` (as written, or in its other Greek spelling).
+pub fn mentions(exprs: &[String], param: &str) -> bool {
+    let alias = greek::alias(param);
+    (exprs.iter().flat_map(|e| parse::names(e)))
+        .any(|n| n == param || alias.as_deref() == Some(n.as_str()))
+}
+
 /// Parses and compiles expressions over `[t, vars…]` with named parameters; the error
 /// carries the index of the failing expression.
 pub fn compile(
@@ -122,6 +129,21 @@ mod tests {
             assert_eq!((e.offset, e.token.as_str()), (offset, token), "{src}: {e}");
             assert!(e.message.contains(msg), "{src}: {e}");
         }
+    }
+
+    #[test]
+    fn mentions_finds_a_parameter_in_either_greek_spelling_and_not_inside_other_names() {
+        let e = s(&["-2*zeta*omega*v", "kk*x"]);
+        assert!(mentions(&e, "ζ") && mentions(&e, "omega"));
+        assert!(!mentions(&e, "k"), "`kk` is not `k`");
+        assert!(
+            mentions(&s(&["x*("]), "x"),
+            "a half-typed equation still names x"
+        );
+        assert!(
+            !mentions(&s(&["x @ k"]), "k"),
+            "text that does not lex names nothing"
+        );
     }
 
     #[test]

@@ -145,6 +145,18 @@ fn lex(src: &str) -> Result<Vec<Token>, ExprError> {
     Ok(out)
 }
 
+/// The names written in `src` (variables, parameters, functions), in order; none if it does
+/// not lex.
+pub fn names(src: &str) -> Vec<String> {
+    let tokens = lex(src).unwrap_or_default();
+    (tokens.into_iter())
+        .filter_map(|t| match t.tok {
+            Tok::Name(n) => Some(n),
+            _ => None,
+        })
+        .collect()
+}
+
 /// What names mean: inputs by position in `[t, vars…]`, parameters by value.
 pub struct Scope<'a> {
     pub inputs: &'a [String],

@@ -1,6 +1,6 @@
 //! The wgpu side of the Scene widget: egui's device and the scene renderers made on it
-//! ([`SceneGpu`], shared through the egui context), and the texture a widget's frame is rendered
-//! into and egui shows ([`Output`]).
+//! ([`SceneGpu`], shared through the egui context; each a [`SceneHost`], as scene mode's), and
+//! the texture a widget's frame is rendered into and egui shows ([`Output`]).
 
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
