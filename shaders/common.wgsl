@@ -59,6 +59,8 @@ struct Globals {
     caustics_depth_m: f32,      // below the water level: the floor the map is focused on
     rad_per_px: f32,            // the angle one pixel of the HDR target subtends, radians
     wave_reach_m: f32,          // Σ amplitudes: no crest or trough is farther from the level
+    sun_disc_radiance: vec3f,   // linear RGB at the disc's centre (drawn by sky.wgsl's background)
+    sun_cos_radius: f32,        // cos of the disc's angular radius
     waves: array<Wave, MAX_WAVES>,
 }
 

@@ -1,8 +1,9 @@
-// debug.wgsl — teaching views: the sun's shadow map as grey levels (near = dark), zoomed to
-// its casters with their depth range stretched, and the
+// debug.wgsl — teaching views, each filling its panel: the sun's shadow map as grey levels
+// (near = dark), zoomed to its casters with their depth range stretched, and the
 // environment cube unfolded as a horizontal cross (+y above, −y below; −x +z +x −z across),
 // each face showing its roughness-blurred mip chain from left (sharp) to right in a strip, and
-// the caustics map seen from above (+x right, +z down; 1 = flat water's light, mid grey).
+// the caustics map seen from above (+x right, +z down; 1 = flat water's light, mid grey),
+// cropped to the panel's aspect.
 // Shadow maps: Williams 1978; cube maps: Greene 1986; caustics: GPU Gems 1 ch. 2.
 //!include fullscreen.wgsl
 //!include aces.wgsl
@@ -51,25 +52,22 @@ fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
     // pixel position in the viewport (not the framebuffer: scene mode draws into a part of
     // the window)
     let px = in.uv * size_px;
-    // the two maps: square, centred
-    let side = min(size_px.x, size_px.y);
-    let p = (px - 0.5 * (size_px - vec2f(side))) / side;
-    let outside = any(p < vec2f(0.0)) || any(p > vec2f(1.0));
+    // the two maps fill the panel: each shows a window of its map with the panel's aspect
+    // (width over height), so no band of the panel is left empty
+    let p = px / size_px;
+    let aspect = size_px.x / max(size_px.y, 1.0);
     if (post.debug_view == 4u) {
-        if (outside) {
-            return to_target(vec3f(0.05));
-        }
+        // the caustics map covers the swim box: its middle, as wide as the panel allows
+        let window = select(vec2f(1.0, 1.0 / aspect), vec2f(aspect, 1.0), aspect < 1.0);
+        let uv = 0.5 + (p - 0.5) * window;
         // focusing factor: 1 (flat water) mid grey, the bright folds white
-        let focus = caustics_load(textureSampleLevel(caustics_map, env_sampler, p, 0.0).r);
+        let focus = caustics_load(textureSampleLevel(caustics_map, env_sampler, uv, 0.0).r);
         return to_target(aces(vec3f(0.2 * focus)));
     }
     if (post.debug_view == 1u) {
-        if (outside) {
-            return to_target(vec3f(0.05));
-        }
         let size = vec2f(textureDimensions(shadow_map));
         // a 16×16 survey of the map: the casters' depth range (empty texels hold the cleared
-        // 1.0 and stay out) and the square around them, so the view fills its panel with the
+        // 1.0 and stay out) and the rectangle around them, so the view fills its panel with the
         // casters and stretches their depths over the grey ramp (near the sun dark, far light)
         var lo = 1.0;
         var hi = 0.0;
@@ -87,20 +85,28 @@ fn fs_main(in: FullscreenOut) -> @location(0) vec4f {
                 }
             }
         }
-        var window_lo = vec2f(0.0);
-        var window_side = 1.0;
+        // the window: the casters' rectangle plus a survey cell on each side, grown along one
+        // axis to the panel's aspect, centred on them and kept on the map where it fits
+        var centre = vec2f(0.5);
+        var extent = vec2f(1.0);
         if (hi > 0.0) {
-            let centre = 0.5 * (uv_lo + uv_hi);
-            window_side = min(max(uv_hi.x - uv_lo.x, uv_hi.y - uv_lo.y) + 2.0 / 16.0, 1.0);
-            window_lo = clamp(centre - 0.5 * window_side, vec2f(0.0), vec2f(1.0 - window_side));
+            centre = 0.5 * (uv_lo + uv_hi);
+            extent = uv_hi - uv_lo + 2.0 / 16.0;
         }
-        let d = textureLoad(shadow_map, vec2i((window_lo + p * window_side) * size), 0).r;
-        if (d >= 0.9999) {
-            // nothing casts here: a faint blue, not white, so the casters stand out
-            return to_target(vec3f(0.55, 0.62, 0.75));
+        let width = max(extent.x, extent.y * aspect);
+        let window = vec2f(width, width / aspect);
+        let window_lo = select(clamp(centre - 0.5 * window, vec2f(0.0), 1.0 - window),
+                               centre - 0.5 * window, window > vec2f(1.0));
+        let uv = window_lo + p * window;
+        let on_map = all(uv >= vec2f(0.0)) && all(uv <= vec2f(1.0));
+        let d = textureLoad(shadow_map, vec2i(clamp(uv, vec2f(0.0), vec2f(1.0)) * (size - 1.0)), 0).r;
+        if (d >= 0.9999 || !on_map) {
+            // nothing casts here: a deep blue, off the grey ramp, so the casters stand out
+            // against it (a pale one left the view a near-uniform sheet)
+            return to_target(vec3f(0.02, 0.04, 0.12));
         }
         let t = clamp((d - lo) / max(hi - lo, 1e-4), 0.0, 1.0);
-        return to_target(vec3f(mix(0.03, 0.95, t)));
+        return to_target(vec3f(mix(0.12, 0.95, t)));
     }
     // env cube cross: 4 × 3 cells, top half of the screen; mips in a strip below
     let cell_px = min(size_px.x / 4.0, size_px.y / 3.6);

@@ -3,10 +3,13 @@
 // F(θ, γ) = (1 + A e^{B / cos θ})(1 + C e^{D γ} + E cos² γ) for luminance Y and chromaticity
 // x, y, its coefficients linear in the turbidity T (the paper's appendix A.2), the zenith
 // values Y_z (eq. A.3, kcd/m²) and x_z, y_z (the appendix's cubic in θ_s), then Yxy → XYZ →
-// linear sRGB (IEC 61966-2-1). A sun disc (limb-darkened, Neckel & Labs 1994's simple
-// two-term fit) sits in the scene light's direction. Rendered once into the six faces of a
-// cube map, then drawn as the background along each pixel's view ray (environment mapping:
-// Blinn & Newell 1976; cube maps: Greene 1986).
+// linear sRGB (IEC 61966-2-1). Rendered once into the six faces of a cube map (the sky only),
+// then drawn as the background along each pixel's view ray (environment mapping: Blinn &
+// Newell 1976; cube maps: Greene 1986). The sun disc (limb-darkened, Neckel & Labs 1994's
+// simple two-term fit) is drawn analytically in the background at the pixel's own resolution,
+// in the scene light's direction: a cube texel (0.7° at 128²) is coarser than its edge. The
+// cube leaves it out, so reflections see the sky and the water's and materials' reflection of
+// the sun is their specular lobe from the light alone (nothing counted twice).
 //!include common.wgsl
 //!include encoding.wgsl
 //!include fullscreen.wgsl
@@ -14,8 +17,7 @@
 
 // `SkyParams` in src/render/sky.rs
 struct SkyParams {
-    sun_dir: vec4f,        // xyz towards the sun, w cos(angular radius of the disc)
-    sun_color: vec4f,      // rgb disc radiance at its centre
+    sun_dir: vec4f,        // xyz towards the sun, w unused
     ground: vec4f,         // rgb below the horizon (scene radiance), w unused
     turbidity: f32,        // T, 2 (clear) .. 10 (hazy)
     radiance_per_kcd: f32, // scene radiance per kcd/m² of Preetham luminance
@@ -82,18 +84,21 @@ fn sky_radiance(d: vec3f) -> vec3f {
     // below the horizon: the horizon's radiance fading into the ground colour (the env cube's
     // lower half, seen only in reflections of steep waves and from under water)
     let horizon = preetham(normalize(vec3f(d.x, 0.0, d.z) + vec3f(0.0, 1e-3, 0.0)), s, t);
-    var c = mix(horizon, sky.ground.rgb, smoothstep(0.0, 0.4, -d.y));
-    if (d.y >= 0.0) {
-        c = preetham(d, s, t);
-    }
-    // the disc, limb-darkened I(μ)/I(1) = 1 − u (1 − √(1 − r²)) with u ≈ 0.6 (visible light)
-    let mu = dot(d, s);
-    let cos_r = sky.sun_dir.w;
-    let r2 = clamp((1.0 - mu) / max(1.0 - cos_r, 1e-6), 0.0, 1.0);
+    let c = mix(horizon, sky.ground.rgb, smoothstep(0.0, 0.4, -d.y));
+    return select(c, preetham(d, s, t), d.y >= 0.0);
+}
+
+// The sun disc along the unit direction `d`: limb-darkened, I(μ)/I(1) = 1 − u (1 − μ) with
+// μ = √(1 − r²), u ≈ 0.6 (visible light), its edge anti-aliased over `px_rad` (one pixel).
+// The angle from the sun's centre is 2 asin(|d − s| / 2): exact for small angles, where
+// acos of a dot product loses its digits.
+fn sun_disc(d: vec3f, s: vec3f, cos_radius: f32, radiance: vec3f, px_rad: f32) -> vec3f {
+    let radius = acos(clamp(cos_radius, -1.0, 1.0));
+    let angle = 2.0 * asin(clamp(0.5 * length(d - s), 0.0, 1.0));
+    let r2 = min(angle * angle / max(radius * radius, 1e-8), 1.0);
     let limb = 1.0 - 0.6 * (1.0 - sqrt(1.0 - r2));
-    let edge = 1.0 - smoothstep(0.85, 1.0, r2);
-    c += sky.sun_color.rgb * limb * edge * step(0.0, d.y);
-    return c;
+    let coverage = clamp((radius - angle) / max(px_rad, 1e-6) + 0.5, 0.0, 1.0);
+    return radiance * limb * coverage * step(0.0, d.y);
 }
 
 @fragment
@@ -112,7 +117,8 @@ fn fs_background(in: FullscreenOut) -> @location(0) vec4f {
     }
     var c: vec3f;
     if (on(g.env_map_on)) {
-        c = hdr_load(textureSampleLevel(env_cube, env_sampler, dir, 0.0).rgb);
+        c = hdr_load(textureSampleLevel(env_cube, env_sampler, dir, 0.0).rgb)
+            + sun_disc(dir, g.sun_dir, g.sun_cos_radius, g.sun_disc_radiance, g.rad_per_px);
     } else {
         // no environment: nothing to see or reflect but a flat grey (the "off" picture)
         c = ENV_OFF_RADIANCE;

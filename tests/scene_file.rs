@@ -43,11 +43,11 @@ fn every_shipped_scene_checks_clean() {
 
 #[test]
 fn malformed_ron_reports_file_line_and_column() {
-    // drop the comma after `distance: 13.0` (line 6 of the camera block)
-    let text = default_text().replacen("distance: 13.0,", "distance: 13.0", 1);
+    // drop the comma after `distance: 9.0` (in the camera block)
+    let text = default_text().replacen("distance: 9.0,", "distance: 9.0", 1);
     let line = text
         .lines()
-        .position(|l| l.contains("distance: 13.0"))
+        .position(|l| l.contains("distance: 9.0"))
         .unwrap()
         + 2;
     let d = scene::parse_scene(&text, Path::new("scenes/bad.ron")).unwrap_err();

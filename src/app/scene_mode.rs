@@ -234,6 +234,7 @@ impl SceneMode {
             ));
         }
         push(&mut self.cpu_ms, t0.elapsed().as_secs_f32() * 1e3);
+        crate::widgets::scene::legend::legend_ui(ui, rect, self.settings.debug_view);
         self.overlay_ui(ui, rect);
         if self.controls_button {
             self.controls_window_ui(ui, rect);

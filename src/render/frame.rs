@@ -203,6 +203,11 @@ pub struct Globals {
     /// the sum of the waves' amplitudes: no crest or trough is farther from the mean level,
     /// metres
     pub wave_reach_m: f32,
+    /// linear RGB radiance at the sun disc's centre (the background draws it; the
+    /// environment cube holds the sky without it)
+    pub sun_disc_radiance: [f32; 3],
+    /// cos of the disc's angular radius
+    pub sun_cos_radius: f32,
     pub waves: [WaveGpu; MAX_WAVES],
 }
 
@@ -308,6 +313,8 @@ pub fn globals(
         caustics_depth_m: super::caustics::focus_depth_m(scene),
         rad_per_px: snap.camera.fov_y_rad / size_px.1.max(1) as f32,
         wave_reach_m: w.all_waves().iter().map(|w| w.amplitude.abs()).sum(),
+        sun_disc_radiance: (Vec3::from(scene.sun.color) * scene.sky.sun_disc_intensity).to_array(),
+        sun_cos_radius: scene.sky.sun_size_deg.to_radians().cos(),
         waves: waves_gpu(scene),
     }
 }
@@ -401,6 +408,14 @@ mod tests {
             ),
             ("rad_per_px", std::mem::offset_of!(Globals, rad_per_px)),
             ("wave_reach_m", std::mem::offset_of!(Globals, wave_reach_m)),
+            (
+                "sun_disc_radiance",
+                std::mem::offset_of!(Globals, sun_disc_radiance),
+            ),
+            (
+                "sun_cos_radius",
+                std::mem::offset_of!(Globals, sun_cos_radius),
+            ),
             ("waves", std::mem::offset_of!(Globals, waves)),
         ];
         let wgsl: Vec<(&str, usize)> = members

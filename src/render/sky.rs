@@ -1,5 +1,7 @@
 //! The analytic daylight sky (sky.wgsl, Preetham, Shirley & Smits 1999) rendered into a cube map and drawn as the background
-//! (environment mapping: Blinn & Newell 1976; cube maps: Greene 1986), and its
+//! (environment mapping: Blinn & Newell 1976; cube maps: Greene 1986), the sun disc drawn
+//! over it per pixel (the cube holds the sky only: reflections take the sun from the light's
+//! specular lobe), and its
 //! roughness-blurred mips (prefilter.wgsl; the split-sum prefiltering of Karis 2013). The cube
 //! is made when the sky or the sun changes, never per frame.
 
@@ -132,7 +134,6 @@ impl SkyKey {
 #[derive(Clone, Copy, Pod, Zeroable)]
 pub struct SkyParams {
     sun_dir: [f32; 4],
-    sun_color: [f32; 4],
     ground: [f32; 4],
     turbidity: f32,
     radiance_per_kcd: f32,
@@ -223,7 +224,6 @@ pub fn build(
     let env = cube_texture(device, "sky env", size, mips, caps.cube_format);
     let sun = glam::Vec3::from(key.sun.direction).normalize();
     let k = &key.sky;
-    let sun_rgb = glam::Vec3::from(key.sun.color) * k.sun_disc_intensity;
     let empty = device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: None,
         layout: &layouts.empty.layout,
@@ -232,8 +232,7 @@ pub fn build(
     let mut enc = device.create_command_encoder(&Default::default());
     for face in 0..6 {
         let params = SkyParams {
-            sun_dir: [sun.x, sun.y, sun.z, k.sun_size_deg.to_radians().cos()],
-            sun_color: [sun_rgb.x, sun_rgb.y, sun_rgb.z, 0.0],
+            sun_dir: [sun.x, sun.y, sun.z, 0.0],
             ground: [k.ground_color[0], k.ground_color[1], k.ground_color[2], 0.0],
             turbidity: k.turbidity,
             radiance_per_kcd: k.radiance_per_kcd,

@@ -40,7 +40,7 @@ pub fn default_school() -> SchoolParams {
     SchoolParams {
         count: 1500,
         max_speed: 1.6,
-        fish_scale: 0.45,
+        fish_scale: 0.6,
         schools: 6,
         goal_weight: 0.5,
         spawn_radius: 1.5,
@@ -149,7 +149,7 @@ impl Default for Sky {
     fn default() -> Self {
         Self {
             turbidity: 2.2,
-            radiance_per_kcd: 0.04,
+            radiance_per_kcd: 0.02,
             ground_color: [0.03, 0.06, 0.08],
             sun_size_deg: 1.2,
             sun_disc_intensity: 60.0,

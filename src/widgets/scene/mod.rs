@@ -13,6 +13,7 @@
 
 pub mod gpu;
 pub mod host;
+pub mod legend;
 
 use std::path::{Path, PathBuf};
 
@@ -334,6 +335,7 @@ impl SlideWidget for SceneWidget {
             let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
             ui.painter_at(rect)
                 .image(out.id, rect, uv, egui::Color32::WHITE);
+            legend::legend_ui(ui, rect, debug_view(self.spec.view));
         }
     }
 
