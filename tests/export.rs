@@ -4,6 +4,9 @@
 //! Regenerate the goldens after an intended change (then LOOK at them before committing):
 //!     UPDATE_SNAPSHOTS=1 cargo test --test export every_slide_matches_its_export_golden
 
+mod common;
+use common::{export, poppler};
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -147,32 +150,6 @@ fn the_same_slide_at_720p_and_4k() {
         let n = differing_blocks(&render(&missing, [1280, 720]), &down);
         assert!(n >= 100, "without its {what}, only {n} blocks differ");
     }
-}
-
-/// Runs `lectern export` with `args`; its stderr.
-fn export(args: &[&std::ffi::OsStr]) -> String {
-    let o = Command::new(env!("CARGO_BIN_EXE_lectern"))
-        .arg("export")
-        .args(args)
-        .output()
-        .unwrap();
-    let err = String::from_utf8_lossy(&o.stderr).into_owned();
-    assert!(o.status.success(), "{err}");
-    err
-}
-
-/// A poppler tool (CI installs poppler-utils: `.ci/run`, `scripts/setup-debian`).
-fn poppler(tool: &str, args: &[&std::ffi::OsStr]) -> std::process::Output {
-    let o = Command::new(tool)
-        .args(args)
-        .output()
-        .unwrap_or_else(|e| panic!("{tool} (poppler-utils) is needed to read the PDF back: {e}"));
-    assert!(
-        o.status.success(),
-        "{tool}: {}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    o
 }
 
 /// `pdfinfo`'s value for `key` ("Pages", "Page size").

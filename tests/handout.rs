@@ -3,6 +3,9 @@
 //! `handout:` texts searchable, the speaker notes absent, the bundled lecture's file small.
 //! Read back with poppler (`pdfinfo`, `pdftotext`, `pdfimages`), which CI installs.
 
+mod common;
+use common::{export, poppler};
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::atomic::Ordering;
@@ -35,32 +38,6 @@ const SMALL_DECK: &str = r#"(
         (id: "three", title: "Bullets", body: [Bullets(["one", "two"])]),
     ],
 )"#;
-
-/// Runs `lectern export` with `args`; its stderr.
-fn export(args: &[&std::ffi::OsStr]) -> String {
-    let o = Command::new(env!("CARGO_BIN_EXE_lectern"))
-        .arg("export")
-        .args(args)
-        .output()
-        .unwrap();
-    let err = String::from_utf8_lossy(&o.stderr).into_owned();
-    assert!(o.status.success(), "{err}");
-    err
-}
-
-/// A poppler tool (CI installs poppler-utils: `.ci/run`, `scripts/setup-debian`).
-fn poppler(tool: &str, args: &[&std::ffi::OsStr]) -> std::process::Output {
-    let o = Command::new(tool)
-        .args(args)
-        .output()
-        .unwrap_or_else(|e| panic!("{tool} (poppler-utils) is needed to read the PDF back: {e}"));
-    assert!(
-        o.status.success(),
-        "{tool}: {}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    o
-}
 
 fn pages(pdf: &Path) -> usize {
     let o = poppler("pdfinfo", &[pdf.as_os_str()]);

@@ -120,3 +120,29 @@ pub fn text_boxes(output: &egui::FullOutput) -> Vec<(String, egui::Rect, egui::R
     }
     out
 }
+
+/// Runs `lectern export` with `args`; its stderr.
+pub fn export(args: &[&std::ffi::OsStr]) -> String {
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_lectern"))
+        .arg("export")
+        .args(args)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert!(o.status.success(), "{err}");
+    err
+}
+
+/// A poppler tool (CI installs poppler-utils: `.ci/run`, `scripts/setup-debian`).
+pub fn poppler(tool: &str, args: &[&std::ffi::OsStr]) -> std::process::Output {
+    let o = std::process::Command::new(tool)
+        .args(args)
+        .output()
+        .unwrap_or_else(|e| panic!("{tool} (poppler-utils) is needed to read the PDF back: {e}"));
+    assert!(
+        o.status.success(),
+        "{tool}: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    o
+}
