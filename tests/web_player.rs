@@ -152,6 +152,10 @@ fn the_exported_page_pages_plots_and_types_in_chromium() {
     let export_png = lectern::app::render_slide_png(&deck, 0, SIZE).unwrap();
     let expect = expected_csv(tmp.path());
     let (_server, port) = serve(&page);
+    let skipped: Vec<String> = (deck.slides.iter().enumerate())
+        .filter(|(_, s)| s.skip)
+        .map(|(i, _)| (i + 1).to_string())
+        .collect();
     let shots = tmp.path().join("shots");
     std::fs::create_dir_all(&shots).unwrap();
     let run = Command::new(&py)
@@ -165,7 +169,14 @@ fn the_exported_page_pages_plots_and_types_in_chromium() {
         .args(["--size", &format!("{}x{}", SIZE[0], SIZE[1])])
         .args(["--euler", &slide_number(&deck, "euler").to_string()])
         .args(["--slope", &slide_number(&deck, "slope-field").to_string()])
+        .args(["--spiral", &slide_number(&deck, "inaccuracy").to_string()])
+        .args([
+            "--work-precision",
+            &slide_number(&deck, "work-precision").to_string(),
+        ])
         .args(["--equation", EQUATION])
+        .arg("--skipped")
+        .arg(skipped.join(","))
         .arg("--expect")
         .arg(&expect)
         .output()
@@ -195,24 +206,35 @@ fn the_exported_page_pages_plots_and_types_in_chromium() {
         );
     }
 
-    // A damaged bundle: a readable error on the page, not a blank canvas.
-    let broken = tmp.path().join("broken");
-    std::fs::create_dir_all(&broken).unwrap();
-    for f in ["index.html", "lectern.js", "player.js", "bundle.js"] {
-        std::fs::copy(page.join(f), broken.join(f)).unwrap();
+    // A damaged bundle, cut short or edited inside its compressed bytes: a readable error on
+    // the page, not a blank canvas.
+    let bundle = std::fs::read(page.join("bundle.js")).unwrap();
+    let mut edited = bundle.clone();
+    let middle = edited.len() / 2;
+    for b in &mut edited[middle..middle + 8] {
+        *b = if *b == b'A' { b'B' } else { b'A' };
     }
-    let bundle = std::fs::read(broken.join("bundle.js")).unwrap();
-    std::fs::write(broken.join("bundle.js"), &bundle[..bundle.len() / 2]).unwrap();
-    let run = Command::new(&py)
-        .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/browser/player.py"))
-        .arg("--broken")
-        .arg(&broken)
-        .output()
-        .unwrap();
-    let said = String::from_utf8_lossy(&run.stderr);
-    eprintln!("{said}\n{}", String::from_utf8_lossy(&run.stdout));
-    assert!(
-        run.status.success(),
-        "the damaged page's check failed:\n{said}"
-    );
+    for (name, damaged) in [
+        ("cut", bundle[..bundle.len() / 2].to_vec()),
+        ("edited", edited),
+    ] {
+        let broken = tmp.path().join(format!("broken-{name}"));
+        std::fs::create_dir_all(&broken).unwrap();
+        for f in ["index.html", "lectern.js", "player.js"] {
+            std::fs::copy(page.join(f), broken.join(f)).unwrap();
+        }
+        std::fs::write(broken.join("bundle.js"), damaged).unwrap();
+        let run = Command::new(&py)
+            .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/browser/player.py"))
+            .arg("--broken")
+            .arg(&broken)
+            .output()
+            .unwrap();
+        let said = String::from_utf8_lossy(&run.stderr);
+        eprintln!("{said}\n{}", String::from_utf8_lossy(&run.stdout));
+        assert!(
+            run.status.success(),
+            "the {name} bundle's page check failed:\n{said}"
+        );
+    }
 }

@@ -4,7 +4,11 @@
 //! `slides()` (the count) and `plotData()` (the current slide's first plot widget's points as
 //! JSON, the numbers `export --data` writes: [`crate::app::plot_data`]), and `editorField`
 //! (where to click to type an equation, once `N` shows the editor) and `editing` (a field has
-//! the keyboard).
+//! the keyboard). For timing inside the page (no WebDriver round trips), `frames` logs the last
+//! painted frames, each `{ui, t, slide, plot}`: `performance.now()` once the app's `ui` for the frame
+//! returned (`ui`) and once it was painted (`t`, a microtask after eframe's paint), the 1-based slide, and
+//! — while a test sets `trackPlot` — a hash of `plotData()`'s text, so a test sees which frame
+//! first showed new points.
 
 use std::cell::RefCell;
 use std::rc::Rc;
@@ -31,7 +35,12 @@ fn parse_fragment(hash: &str) -> Option<usize> {
 pub struct Hook {
     window: web_sys::Window,
     object: js_sys::Object,
+    /// `(hook, slide, plot)`: appends to `hook.frames` (see the module's doc).
+    log_frame: js_sys::Function,
 }
+
+/// The frames `frames` keeps.
+const FRAMES_KEPT: usize = 600;
 
 impl Hook {
     /// Puts `window.lectern` on the page; its functions read `app` between frames.
@@ -43,6 +52,18 @@ impl Hook {
                 .map_err(|e| super::page::js_error_text(&e))
         };
         set("ready", &JsValue::FALSE)?;
+        set("frames", &js_sys::Array::new())?;
+        set("trackPlot", &JsValue::FALSE)?;
+        // the painted time: a microtask runs once eframe's frame callback (ui, then paint) returns
+        let log_frame = js_sys::Function::new_with_args(
+            "hook, slide, plot",
+            &format!(
+                "var e = {{ ui: performance.now(), t: null, slide: slide, plot: plot }};\n\
+                 hook.frames.push(e);\n\
+                 if (hook.frames.length > {FRAMES_KEPT}) hook.frames.shift();\n\
+                 queueMicrotask(function () {{ e.t = performance.now(); }});"
+            ),
+        );
         let a = app.clone();
         let slide = Closure::<dyn Fn() -> JsValue>::new(move || match a.try_borrow() {
             Ok(app) => JsValue::from(app.nav().index() as u32 + 1),
@@ -70,6 +91,7 @@ impl Hook {
         Ok(Self {
             window: window.clone(),
             object,
+            log_frame,
         })
     }
 
@@ -81,6 +103,31 @@ impl Hook {
             .window
             .add_event_listener_with_callback("hashchange", wake.as_ref().unchecked_ref());
         wake.forget();
+    }
+
+    /// Appends this frame to `frames` (called once the app's `ui` returned, before the paint).
+    fn log_frame(&self, slide: usize, plot: Option<&str>) {
+        let plot = match plot {
+            Some(text) => {
+                use std::hash::{Hash as _, Hasher as _};
+                let mut h = std::collections::hash_map::DefaultHasher::new();
+                text.hash(&mut h);
+                // 32 bits: exact as a JavaScript number
+                JsValue::from(h.finish() as u32)
+            }
+            None => JsValue::NULL,
+        };
+        let _ = self.log_frame.call3(
+            &JsValue::NULL,
+            &self.object,
+            &JsValue::from(slide as u32),
+            &plot,
+        );
+    }
+
+    /// A test asked for each frame's plot hash.
+    fn tracking_plot(&self) -> bool {
+        js_sys::Reflect::get(&self.object, &"trackPlot".into()).is_ok_and(|v| v.is_truthy())
     }
 
     fn set_ready(&self) {
@@ -166,6 +213,8 @@ impl eframe::App for Player {
         self.follow_fragment(&mut app);
         app.ui(ui, frame);
         let index = app.nav().index();
+        let plot = self.hook.tracking_plot().then(|| app.first_plot_json());
+        self.hook.log_frame(index + 1, plot.as_deref());
         self.write_fragment(index);
         self.hook
             .set_editor_field(crate::app::first_field_rect(ui.ctx()));

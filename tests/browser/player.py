@@ -3,7 +3,8 @@
 software WebGL2 through SwiftShader) and checks what tests/web_player.rs asks, printing one
 JSON object of measurements on the last line. Exit status 0 when every check passed.
 
-Usage: player.py --url URL [--url URL] --shots DIR --euler N --slope N --expect CSV
+Usage: player.py --url URL [--url URL] --shots DIR --euler N --slope N --spiral N
+                 --work-precision N --skipped N,N,... --expect CSV
        player.py --broken DIR   (a page whose bundle is damaged: expect the readable error)
 """
 import argparse
@@ -70,6 +71,146 @@ def key(d, k):
     ActionChains(d).send_keys(k).perform()
 
 
+# A key pressed inside the page, timed by the page's own clock (no WebDriver round trip): the
+# hook's frame log (`window.lectern.frames`, src/web/hook.rs) says when the first frame that
+# shows the change was painted. `want` is a slide number, or "plot": a frame whose plot hash
+# differs from the last frame's (the test sets `trackPlot` first).
+IN_PAGE_KEY = """
+var key = arguments[0], want = arguments[1], done = arguments[arguments.length - 1];
+var CODES = {"ArrowRight": "ArrowRight", "ArrowLeft": "ArrowLeft", "+": "Equal", "-": "Minus"};
+var h = window.lectern, canvas = document.getElementById("lectern-canvas");
+canvas.focus();
+var frames = h.frames, last = frames[frames.length - 1], before = last ? last.plot : null;
+var o = {key: key, code: CODES[key] || key, bubbles: true, cancelable: true};
+var t0 = performance.now();
+canvas.dispatchEvent(new KeyboardEvent("keydown", o));
+canvas.dispatchEvent(new KeyboardEvent("keyup", o));
+(function poll() {
+  for (var i = frames.indexOf(last) + 1; i < frames.length; i++) {
+    var e = frames[i];
+    if (e.t === null) break;
+    var shown = want === "plot" ? e.plot !== null && e.plot !== before : e.slide === want;
+    if (shown) { done({ms: e.t - t0, ui_ms: e.ui - t0}); return; }
+  }
+  if (performance.now() - t0 > 10000) { done(null); return; }
+  setTimeout(poll, 2);
+})();
+"""
+
+
+def key_in_page(d, k, want):
+    r = d.execute_async_script(IN_PAGE_KEY, k, want)
+    assert r is not None, "key %r: no frame showed %r within 10 s" % (k, want)
+    return r
+
+
+def median(xs):
+    xs = sorted(xs)
+    n = len(xs)
+    return xs[n // 2] if n % 2 else 0.5 * (xs[n // 2 - 1] + xs[n // 2])
+
+
+def time_keys(d, args, figures, tag, repeats=12):
+    """Medians of key -> next slide and key -> new plot frame, measured in the page."""
+    d.set_script_timeout(30)
+    d.execute_script("location.hash = '#/1'")
+    wait_for(d, "return window.lectern.slide() === 1", 10)
+    paging = []
+    for i in range(repeats):
+        # right to slide 2, left back to 1
+        k, want = ("ArrowRight", 2) if i % 2 == 0 else ("ArrowLeft", 1)
+        paging.append(key_in_page(d, k, want))
+    d.execute_script("location.hash = '#/%d'" % args.euler)
+    wait_for(d, "return window.lectern.slide() === %d" % args.euler, 10)
+    d.execute_script("window.lectern.trackPlot = true")
+    # one frame with a plot hash to compare against
+    key_in_page(d, "+", "plot")
+    plotting = []
+    for i in range(repeats):
+        plotting.append(key_in_page(d, "-" if i % 2 == 0 else "+", "plot"))
+    d.execute_script("window.lectern.trackPlot = false")
+    for name, runs in [("key_to_next_slide_ms", paging), ("h_key_to_new_plot_frame_ms", plotting)]:
+        painted = [r["ms"] for r in runs]
+        figures[tag + "_" + name] = {
+            "median": round(median(painted), 1), "min": round(min(painted), 1),
+            "max": round(max(painted), 1), "n": len(painted),
+            # the same frames when the app's ui returned, before eframe's paint
+            "ui_median": round(median([r["ui_ms"] for r in runs]), 1)}
+
+
+def walk_all_slides(d, args, figures, tag):
+    """The "Done when" walk: every slide paging skips by the keyboard, the skipped ones (the
+    optional project slides) by their `#/N` link; each painted, no console errors."""
+    d.execute_script("location.hash = '#/1'")
+    wait_for(d, "return window.lectern.slide() === 1", 10)
+    n = d.execute_script("return window.lectern.slides()")
+    skipped = [int(k) for k in args.skipped.split(",") if k] if args.skipped else []
+    paged = [k for k in range(1, n + 1) if k not in skipped]
+    slowest = (0.0, 1)
+    for k in paged[1:]:
+        ms = key_in_page(d, "ArrowRight", k)["ms"]
+        slowest = max(slowest, (ms, k))
+        errors = severe(d)
+        assert not errors, "console errors on slide %d: %r" % (k, errors)
+        assert d.execute_script("return location.hash") == "#/%d" % k, "fragment off at %d" % k
+    for k in skipped:
+        d.execute_script("location.hash = '#/%d'" % k)
+        wait_for(d, "var f = window.lectern.frames, e = f[f.length - 1];"
+                    " return e.slide === %d && e.t !== null" % k, 10)
+        errors = severe(d)
+        assert not errors, "console errors on slide %d: %r" % (k, errors)
+    figures[tag + "_walk"] = {"paged": len(paged), "linked": len(skipped),
+                              "slowest_key_ms": round(slowest[0], 1), "slowest_slide": slowest[1]}
+
+
+def max_abs_point(p):
+    """The largest |x| or |y| of Euler's path (`series,t,x,y` rows)."""
+    assert p["columns"][:2] == ["series", "t"], "not paths in t: %r" % p["columns"]
+    best = 0.0
+    for r in p["rows"]:
+        if str(r[0]).lower() != "euler":
+            continue
+        for c in r[2:]:
+            if isinstance(c, (int, float)) and math.isfinite(c):
+                best = max(best, abs(c))
+    return best
+
+
+def spiral_off(d, args, figures, tag):
+    """On the spiral slide, h up (the slider's + key) until Euler's path leaves by orders of
+    magnitude: the largest |x| the plot holds grows 100-fold."""
+    d.execute_script("location.hash = '#/%d'" % args.spiral)
+    wait_for(d, "return window.lectern.slide() === %d" % args.spiral, 10)
+    start = max_abs_point(plot(d))
+    assert 0.5 < start < 10, "the spiral slide starts at max |x| %r" % start
+    presses, now = 0, start
+    while now < 100 * start and presses < 30:
+        before = json.dumps(plot(d))
+        key(d, "+")
+        presses += 1
+        try:
+            wait_for(d, "return window.lectern.plotData() !== %s" % json.dumps(before), 5)
+        except AssertionError:
+            break  # h at the top of its range
+        now = max_abs_point(plot(d))
+    assert now >= 100 * start, "after %d presses of + max |x| is %r (from %r)" % (presses, now, start)
+    figures[tag + "_spiral"] = {"presses": presses, "max_abs_from": start, "max_abs_to": now}
+
+
+def work_precision_link(d, args, figures, tag, url):
+    """`index.html#/N` lands on the work-precision slide and its sweep brings points."""
+    # a fresh load, as from a course page's link (not a fragment change in the open page)
+    d.get("about:blank")
+    d.get(url.split("#")[0] + "#/%d" % args.work_precision)
+    wait_for(d, "return window.lectern && window.lectern.ready === true")
+    assert d.execute_script("return window.lectern.slide()") == args.work_precision, "link missed"
+    s = wait_for(d, "var p = JSON.parse(window.lectern.plotData());"
+                    " return p !== null && p.rows.length > 0", 20)
+    errors = severe(d)
+    assert not errors, "console errors on the linked slide: %r" % errors
+    figures[tag + "_work_precision_first_points_s"] = round(s, 2)
+
+
 def rows_of_csv(path):
     with open(path) as f:
         lines = [l for l in f.read().splitlines() if l]
@@ -116,6 +257,10 @@ def check_page(args, url, size, figures, tag):
         d.get(url)
         load_s = wait_for(d, "return window.lectern && window.lectern.ready === true")
         figures[tag + "_load_to_first_slide_s"] = round(time.monotonic() - t0, 3)
+        # the page's own clock: navigation start to the painted frame that made `ready` true
+        wait_for(d, "var f = window.lectern.frames; return f.length > 1 && f[1].t !== null", 10)
+        figures[tag + "_load_to_first_slide_in_page_ms"] = round(
+            d.execute_script("return window.lectern.frames[1].t"), 1)
         assert d.execute_script("return window.lectern.slide()") == 1, "not on slide 1"
         n = d.execute_script("return window.lectern.slides()")
         assert n >= 13, "only %d slides" % n
@@ -124,10 +269,8 @@ def check_page(args, url, size, figures, tag):
             with open("%s/slide1-%s.png" % (args.shots, tag), "wb") as f:
                 f.write(canvas_png(d))
         canvas = d.find_element(By.ID, "lectern-canvas")
-        t = time.monotonic()
         key(d, Keys.ARROW_RIGHT)
         wait_for(d, "return window.lectern.slide() === 2", 10)
-        figures.setdefault(tag + "_key_to_next_slide_ms", round(1e3 * (time.monotonic() - t), 1))
         assert d.execute_script("return location.hash") == "#/2", "the fragment did not follow"
         # the fragment opens a slide (a link from a course page)
         d.execute_script("location.hash = '#/13'")
@@ -165,6 +308,11 @@ def check_page(args, url, size, figures, tag):
         assert before is not None, "no plot data on the Euler slide"
         key(d, "+")
         wait_for(d, "return window.lectern.plotData() !== %s" % json.dumps(json.dumps(before)), 10)
+        if tag == "file":
+            time_keys(d, args, figures, tag)
+            walk_all_slides(d, args, figures, tag)
+            spiral_off(d, args, figures, tag)
+            work_precision_link(d, args, figures, tag, url)
         errors = severe(d)
         assert not errors, "console errors: %r" % errors
     finally:
@@ -191,6 +339,9 @@ def main():
     p.add_argument("--size", default="1280x720")
     p.add_argument("--euler", type=int)
     p.add_argument("--slope", type=int)
+    p.add_argument("--spiral", type=int)
+    p.add_argument("--work-precision", type=int)
+    p.add_argument("--skipped", default="", help="the slides paging skips, as 21,22,...")
     p.add_argument("--equation", default="-2*x + cos(3*t)")
     p.add_argument("--expect")
     p.add_argument("--broken")
