@@ -8,7 +8,7 @@
 
 use std::collections::VecDeque;
 use std::path::{Path, PathBuf};
-use std::time::Instant;
+use web_time::Instant;
 
 use anyhow::Result;
 
@@ -57,6 +57,8 @@ pub struct SceneMode {
     pub(super) interval_ms: VecDeque<f32>,
     /// the interval before the newest drawn frame, until [`Self::take_drawn_frame`] reads it
     drawn: Option<f32>,
+    /// scene frames drawn so far (the web player's hook measures fps in the page from it)
+    frames_drawn: u64,
 }
 
 impl SceneMode {
@@ -101,6 +103,7 @@ impl SceneMode {
             cpu_ms: VecDeque::new(),
             interval_ms: VecDeque::new(),
             drawn: None,
+            frames_drawn: 0,
         })
     }
 
@@ -153,6 +156,11 @@ impl SceneMode {
     /// `--frame-stats`, which labels it `scene`). `None` when no frame was drawn since.
     pub fn take_drawn_frame(&mut self) -> Option<f32> {
         self.drawn.take()
+    }
+
+    /// How many scene frames [`Self::ui`] has drawn.
+    pub fn frames_drawn(&self) -> u64 {
+        self.frames_drawn
     }
 
     /// Steps the simulation by the real time since the last frame (or one step when asked).
@@ -227,6 +235,7 @@ impl SceneMode {
             .renderer
             .encode_scene(&self.sim.scene, snap, &self.settings, size);
         render_state.queue.submit([enc.finish()]);
+        self.frames_drawn += 1;
         if let Some(output) = self.host.renderer.output(&self.settings) {
             ui.painter().add(egui_wgpu::Callback::new_paint_callback(
                 rect,

@@ -68,6 +68,7 @@ pub fn export_web(deck_path: &Path, out: &Path, player_dir: &Path) -> anyhow::Re
         }
         let _ = crate::app::plot_data::slide_data(slide, &mut state);
     }
+    read_scene_mode_files(&_app.scene_path);
     let formulas = typeset_formulas(crate::math::pool::take_recorded())?;
     let files = bundled_files(&root, &recording.files_read())?;
     let deck_in_bundle = bundle_path(&root, &deck_real)
@@ -88,6 +89,19 @@ pub fn export_web(deck_path: &Path, out: &Path, player_dir: &Path) -> anyhow::Re
         files: written,
         failures,
     })
+}
+
+/// Reads (so the recording bundles them) what scene mode (`Tab`) loads in the player though no
+/// slide drew it: the scene file and every technique's shader with its includes. A file that
+/// does not load is left to the player, which shows the scene's error as the desktop does.
+fn read_scene_mode_files(scene_path: &Path) {
+    let _ = crate::scene::load_scene(scene_path);
+    let Ok(folder) = crate::bundled::shader_folder_for_scene(scene_path) else {
+        return;
+    };
+    for name in crate::render::pipeline::TECHNIQUE_SHADERS {
+        let _ = crate::render::shaders::load(&folder.dir.join(name));
+    }
 }
 
 /// Each formula asked for, once (at the largest size asked), typeset at twice that size.
@@ -122,7 +136,11 @@ fn typeset_formulas(asked: Vec<Request>) -> anyhow::Result<Vec<BundledFormula>> 
 fn bundled_files(root: &Path, read: &[PathBuf]) -> anyhow::Result<Vec<BundledFile>> {
     let mut out = Vec::new();
     for path in read {
-        let Some(rel) = bundle_path(root, path) else {
+        // the shaders and scene built into lectern (a project without its own) go where the
+        // player looks for a project's
+        let built_in = crate::bundled::in_bundled_folder(path)
+            .and_then(|rel| rel.to_str().map(|r| r.replace('\\', "/")));
+        let Some(rel) = bundle_path(root, path).or(built_in) else {
             eprintln!(
                 "lectern: warning: {} is outside the project folder {}: left out of the page",
                 path.display(),

@@ -83,6 +83,11 @@ impl Hook {
         wake.forget();
     }
 
+    /// `window.lectern` itself (the scene's half adds its functions: [`super::scene_hook`]).
+    pub fn object(&self) -> &js_sys::Object {
+        &self.object
+    }
+
     fn set_ready(&self) {
         let _ = js_sys::Reflect::set(&self.object, &"ready".into(), &JsValue::TRUE);
     }
