@@ -220,12 +220,16 @@ fn the_exported_page_pages_plots_and_types_in_chromium() {
 /// The page's Scene widget against render-scene's frame (SwiftShader's WebGL2 against
 /// lavapipe's Vulkan, the widget's picture also resampled once more by egui): mean absolute
 /// difference per channel (0–255) and the fraction of pixels off by more than 48 in a channel.
-/// MEASURED-BELOW
-const MAX_SCENE_MEAN_DIFF: f64 = 6.0;
-const MAX_SCENE_FAR_FRACTION: f64 = 0.02;
+/// Measured (SwiftShader's float targets: the page offers EXT_color_buffer_float): mean 2.83,
+/// 0.33 % of pixels far off (sub-pixel placement of the widget, the upscale's filtering, the
+/// rasterisers' edges). The bounds leave room for that (×1.6, ×4.5) and stay below what
+/// switching the shadows off does to the same frame (mean 5.48, 5.09 % far off): a picture
+/// without shadows, without the school or with a wrong camera fails.
+const MAX_SCENE_MEAN_DIFF: f64 = 4.5;
+const MAX_SCENE_FAR_FRACTION: f64 = 0.015;
 /// Shadows off against on, and scene mode against the slide: the least mean difference that
-/// counts as "the picture changed". MEASURED-TOGGLE
-const MIN_TOGGLE_MEAN_DIFF: f64 = 1.0;
+/// counts as "the picture changed" (shadows off measured 5.48).
+const MIN_TOGGLE_MEAN_DIFF: f64 = 2.0;
 
 /// The slide with live Scene widgets the scene check opens (the shadows on the left).
 const SCENE_SLIDE: &str = "project-shadow-map";

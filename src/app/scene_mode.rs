@@ -55,6 +55,8 @@ pub struct SceneMode {
     last_instant: Option<Instant>,
     pub(super) cpu_ms: VecDeque<f32>,
     pub(super) interval_ms: VecDeque<f32>,
+    /// the simulation's share of a frame (the school, the bodies), ms
+    pub(super) step_ms: VecDeque<f32>,
     /// the interval before the newest drawn frame, until [`Self::take_drawn_frame`] reads it
     drawn: Option<f32>,
     /// scene frames drawn so far (the web player's hook measures fps in the page from it)
@@ -102,6 +104,7 @@ impl SceneMode {
             last_instant: None,
             cpu_ms: VecDeque::new(),
             interval_ms: VecDeque::new(),
+            step_ms: VecDeque::new(),
             drawn: None,
             frames_drawn: 0,
         })
@@ -209,7 +212,9 @@ impl SceneMode {
     /// Draws the scene filling the available rect; drag orbits, scroll zooms.
     pub fn ui(&mut self, ui: &mut egui::Ui, render_state: &egui_wgpu::RenderState) {
         self.poll_reload();
+        let t_step = Instant::now();
         let interval = self.step();
+        push(&mut self.step_ms, t_step.elapsed().as_secs_f32() * 1e3);
         push(&mut self.interval_ms, interval);
         if self.last_instant.is_some() && interval > 0.0 {
             self.quality.observe(interval);

@@ -28,6 +28,11 @@ impl LecternApp {
                 "renderSize": view.host.renderer.frame_info().render_size,
                 "backend": view.host.backend_line(),
                 "errors": view.errors(),
+                // means over the last 60 frames: wall time between frames, the simulation
+                // step, and recording + submitting the frame (the GPU's work is not in it)
+                "frameMs": super::scene_mode::mean(&view.interval_ms),
+                "stepMs": super::scene_mode::mean(&view.step_ms),
+                "recordMs": super::scene_mode::mean(&view.cpu_ms),
             }),
             Some(Err(e)) => serde_json::json!({ "errors": [e] }),
             None => serde_json::Value::Null,
