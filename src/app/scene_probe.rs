@@ -80,6 +80,16 @@ impl LecternApp {
         state.set_param(&w.path, &format!("toggles.{id}"), ParamSnapshot::Bool(on))
     }
 
+    /// Scene mode's school size, as its panel's "count" slider sets it (the browser benchmark
+    /// measures what fewer fish buy). False when scene mode has not started.
+    pub fn set_scene_fish(&mut self, count: usize) -> bool {
+        let Some(Ok(view)) = &mut self.scene else {
+            return false;
+        };
+        view.sim.scene.school.count = count.min(crate::scene::model::MAX_FISH);
+        true
+    }
+
     fn scene_widget_problems(&mut self, index: usize, path: &[usize]) -> Vec<String> {
         let Some(slide) = self.session.deck().slides.get(index).cloned() else {
             return Vec::new();

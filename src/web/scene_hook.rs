@@ -1,7 +1,8 @@
 //! The scene half of the test hook (`window.lectern`, [`super::hook`]): `scene()` is
 //! [`LecternApp::scene_json`] (where the slide's first Scene widget is, scene mode's frame
 //! count, rung, render size and backend line), and `sceneToggle(id, on)` sets a technique as
-//! the controls' tick box does ([`LecternApp::set_scene_toggle`]) and wakes the page.
+//! the controls' tick box does ([`LecternApp::set_scene_toggle`]) and wakes the page;
+//! `sceneFish(n)` sets scene mode's school size as its panel's slider does.
 
 use std::cell::RefCell;
 use std::rc::Rc;
@@ -18,6 +19,16 @@ pub fn install(object: &js_sys::Object, app: Rc<RefCell<LecternApp>>, ctx: &egui
         Ok(mut app) => JsValue::from(app.scene_json(&c)),
         Err(_) => JsValue::NULL,
     });
+    let (a, c) = (app.clone(), ctx.clone());
+    let fish = Closure::<dyn Fn(u32) -> JsValue>::new(move |n: u32| match a.try_borrow_mut() {
+        Ok(mut app) => {
+            c.request_repaint();
+            JsValue::from(app.set_scene_fish(n as usize))
+        }
+        Err(_) => JsValue::NULL,
+    });
+    let _ = js_sys::Reflect::set(object, &"sceneFish".into(), fish.as_ref());
+    fish.forget();
     let c = ctx.clone();
     let toggle = Closure::<dyn Fn(String, bool) -> JsValue>::new(move |id: String, on: bool| {
         match app.try_borrow_mut() {
