@@ -68,7 +68,7 @@ pub fn export_web(deck_path: &Path, out: &Path, player_dir: &Path) -> anyhow::Re
         }
         let _ = crate::app::plot_data::slide_data(slide, &mut state);
     }
-    read_scene_mode_files(&_app.scene_path);
+    read_scene_mode_files(&root, &_app.scene_path);
     let formulas = typeset_formulas(crate::math::pool::take_recorded())?;
     let files = bundled_files(&root, &recording.files_read())?;
     let deck_in_bundle = bundle_path(&root, &deck_real)
@@ -93,8 +93,16 @@ pub fn export_web(deck_path: &Path, out: &Path, player_dir: &Path) -> anyhow::Re
 
 /// Reads (so the recording bundles them) what scene mode (`Tab`) loads in the player though no
 /// slide drew it: the scene file and every technique's shader with its includes. A file that
-/// does not load is left to the player, which shows the scene's error as the desktop does.
-fn read_scene_mode_files(scene_path: &Path) {
+/// does not load is left to the player, which shows the scene's error as the desktop does; a
+/// scene found outside the project (the current folder's, for a deck elsewhere) is not the
+/// page's to carry.
+fn read_scene_mode_files(root: &Path, scene_path: &Path) {
+    let real = scene_path
+        .canonicalize()
+        .unwrap_or_else(|_| scene_path.to_path_buf());
+    if bundle_path(root, &real).is_none() && crate::bundled::in_bundled_folder(&real).is_none() {
+        return;
+    }
     let _ = crate::scene::load_scene(scene_path);
     let Ok(folder) = crate::bundled::shader_folder_for_scene(scene_path) else {
         return;
