@@ -289,7 +289,7 @@ fn crop(shot: &image::RgbaImage, rect: &serde_json::Value) -> image::RgbaImage {
 }
 
 /// Issue #25 in the browser: the shadow-mapping slide's live Scene draws what `render-scene`
-/// draws, switching shadows off changes it, `Tab` shows scene mode (its backend line, frame
+/// draws, switching shadows off changes it, a drag orbits it, `Tab` shows scene mode (its backend line, frame
 /// rate and rung in the figures), and the console stays clean.
 #[test]
 fn the_water_scene_runs_live_in_chromium() {
@@ -386,6 +386,13 @@ fn the_water_scene_runs_live_in_chromium() {
     assert!(
         toggle_mean > MIN_TOGGLE_MEAN_DIFF,
         "switching shadows off did not change the picture (mean {toggle_mean:.2})"
+    );
+    let orbited = crop(&open("scene-widget-orbited.png"), &figures["widget"]);
+    let (orbit_mean, _) = difference(&no_shadows, &orbited, 48);
+    eprintln!("a drag across the widget: mean |diff| {orbit_mean:.2}");
+    assert!(
+        orbit_mean > MIN_TOGGLE_MEAN_DIFF,
+        "dragging across the Scene did not orbit its camera (mean {orbit_mean:.2})"
     );
     let mode = open("scene-mode.png");
     let (mode_mean, _) = difference(&mode, &open("scene-widget.png"), 48);

@@ -2,7 +2,8 @@
 """The water scene in the exported page (issue #25), in Debian's headless Chromium (software
 WebGL2 through SwiftShader), run by tests/web_player.rs beside player.py: on a slide with live
 Scene widgets it saves the canvas (the Rust test crops the widget and compares it with
-render-scene's frame), switches a toggle off and saves again, presses Tab for scene mode,
+render-scene's frame), switches a toggle off and saves again, drags across the widget (orbit)
+and saves again, presses Tab for scene mode,
 measures its frame rate in the page, and checks the console. Prints one JSON object of
 figures on the last line; exit status 0 when every check here passed.
 
@@ -12,6 +13,8 @@ import argparse
 import json
 import sys
 
+from selenium.webdriver.common.action_chains import ActionChains
+from selenium.webdriver.common.by import By
 from selenium.webdriver.common.keys import Keys
 
 from player import browser, canvas_png, key, severe, wait_for
@@ -52,6 +55,18 @@ def check(args, figures):
             "no shadows toggle on the slide's Scene widget"
         settle(d, 6)
         with open(args.shots + "/scene-widget-no-shadows.png", "wb") as f:
+            f.write(canvas_png(d))
+        # a drag across the widget orbits its camera, as in scene mode
+        w = figures["widget"]
+        canvas = d.find_element(By.ID, "lectern-canvas")
+        ActionChains(d).move_to_element_with_offset(
+            canvas, w["x"] + w["w"] / 2 - size[0] / 2, w["y"] + w["h"] / 2 - size[1] / 2
+        ).click_and_hold().move_by_offset(120, 0).move_by_offset(60, 0).release().perform()
+        settle(d, 6)
+        # (the widget takes the drag: it is no swipe to the next slide)
+        assert d.execute_script("return window.lectern.slide()") == args.slide, \
+            "the drag paged instead of orbiting"
+        with open(args.shots + "/scene-widget-orbited.png", "wb") as f:
             f.write(canvas_png(d))
         # Tab: scene mode, its frame rate measured in the page over a few seconds
         key(d, Keys.TAB)
