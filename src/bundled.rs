@@ -31,13 +31,31 @@ pub fn shader_folder_for_scene(scene_path: &Path) -> Result<ShaderFolder, String
     let own = crate::paths::project_root(scene_path).join(crate::render::SHADER_DIR);
     // (the bundled scene's own folder holds the bundled shaders: those count as bundled)
     let in_bundled = own.starts_with(bundled_root_path());
-    if own.is_dir() && !in_bundled {
+    // (through the project's files: in the web player a bundle path, never the disk)
+    if crate::project_files::is_dir(&own) && !in_bundled {
         return Ok(ShaderFolder {
             dir: own,
             bundled: false,
         });
     }
+    if cfg!(target_arch = "wasm32") {
+        // export puts the bundled shaders under `shaders/` ([`in_bundled_folder`]): none there
+        // means a page that was not written by `export --web`
+        return Err(format!(
+            "the page has no shaders (no {} in its bundle): export it again",
+            own.display()
+        ));
+    }
     bundled_shader_dir().map(|dir| ShaderFolder { dir, bundled: true })
+}
+
+/// `path` relative to the folder the bundled files are written to (`shaders/pbr.wgsl`,
+/// `scenes/water.ron`), when it is one of them: `export --web` puts them into the page at that
+/// path of the project, where the player looks for a project's own.
+pub fn in_bundled_folder(path: &Path) -> Option<PathBuf> {
+    let root = bundled_root_path();
+    let real = root.canonicalize().unwrap_or(root);
+    (path.strip_prefix(&real).ok()).map(Path::to_path_buf)
 }
 
 /// The bundled shaders written out (once per process; a file already there with the same

@@ -20,6 +20,8 @@ pub trait FileSource: Send + Sync {
     fn read(&self, path: &Path) -> io::Result<Vec<u8>>;
     /// Whether `path` is a file this source can read.
     fn is_file(&self, path: &Path) -> bool;
+    /// Whether `path` is a folder holding files of this source (a project's `shaders/`).
+    fn is_dir(&self, path: &Path) -> bool;
 }
 
 /// The files on disk (the desktop app, `lectern check`, `export`).
@@ -31,6 +33,9 @@ impl FileSource for Disk {
     }
     fn is_file(&self, path: &Path) -> bool {
         path.is_file()
+    }
+    fn is_dir(&self, path: &Path) -> bool {
+        path.is_dir()
     }
 }
 
@@ -75,6 +80,11 @@ impl FileSource for Bundle {
     fn is_file(&self, path: &Path) -> bool {
         self.files.contains_key(&crate::paths::lexical(path))
     }
+    /// A bundle has no folders of its own: one is there when a file lies under it.
+    fn is_dir(&self, path: &Path) -> bool {
+        let dir = crate::paths::lexical(path);
+        (self.files.keys()).any(|f| f.starts_with(&dir) && *f != dir)
+    }
 }
 
 /// The files on disk, noting every one read (`lectern export --web` bundles exactly the files
@@ -104,6 +114,9 @@ impl FileSource for Recording {
     fn is_file(&self, path: &Path) -> bool {
         path.is_file()
     }
+    fn is_dir(&self, path: &Path) -> bool {
+        path.is_dir()
+    }
 }
 
 impl<T: FileSource + ?Sized> FileSource for Arc<T> {
@@ -112,6 +125,9 @@ impl<T: FileSource + ?Sized> FileSource for Arc<T> {
     }
     fn is_file(&self, path: &Path) -> bool {
         (**self).is_file(path)
+    }
+    fn is_dir(&self, path: &Path) -> bool {
+        (**self).is_dir(path)
     }
 }
 
@@ -148,6 +164,11 @@ pub fn is_file(path: &Path) -> bool {
     source().is_file(path)
 }
 
+/// Whether the project folder at `path` exists (in a bundle: holds a file).
+pub fn is_dir(path: &Path) -> bool {
+    source().is_dir(path)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -167,5 +188,7 @@ mod tests {
         let e = b.read(Path::new("slides/problems/b.ron")).unwrap_err();
         assert_eq!(e.kind(), io::ErrorKind::NotFound);
         assert!(!b.is_file(Path::new("slides/problems")));
+        assert!(b.is_dir(Path::new("slides/problems")) && b.is_dir(Path::new("./slides")));
+        assert!(!b.is_dir(Path::new("slides/problems/a.ron")) && !b.is_dir(Path::new("shaders")));
     }
 }

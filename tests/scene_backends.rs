@@ -144,3 +144,57 @@ fn the_webgl2_like_caps_are_what_a_browser_without_float_targets_reports() {
         wgpu::Limits::downlevel_webgl2_defaults().max_texture_dimension_2d
     );
 }
+
+/// With no Vulkan driver to be found (the loader pointed at a file that is not there, as on a
+/// lecture-room PC or VM with only OpenGL) and no `WGPU_BACKEND`, `lectern render-scene` falls
+/// back to GL, says so in its summary line, and draws the scene (sky above, water below).
+#[test]
+fn without_a_vulkan_driver_render_scene_falls_back_to_gl_and_names_it() {
+    let out_dir = tempfile::tempdir().unwrap();
+    let run = |hide_vulkan: bool| {
+        let mut c = std::process::Command::new(env!("CARGO_BIN_EXE_lectern"));
+        c.current_dir(env!("CARGO_MANIFEST_DIR"))
+            .args([
+                "render-scene",
+                "--size",
+                "320x180",
+                "--time",
+                "2.5",
+                "--out",
+            ])
+            .arg(out_dir.path())
+            .env_remove("WGPU_BACKEND")
+            .env_remove("WGPU_ADAPTER_NAME");
+        if hide_vulkan {
+            // the old and the new name of the loader's list of drivers
+            c.env("VK_ICD_FILENAMES", "/nonexistent/icd.json")
+                .env("VK_DRIVER_FILES", "/nonexistent/icd.json");
+        }
+        let out = c.output().unwrap();
+        let said = String::from_utf8_lossy(&out.stderr).into_owned();
+        assert!(out.status.success(), "render-scene failed:\n{said}");
+        said
+    };
+    let said = run(true);
+    assert!(
+        said.contains("(Gl)"),
+        "no Vulkan driver: the summary line must name GL:\n{said}"
+    );
+    let img = image::open(out_dir.path().join("frame-0000.png"))
+        .unwrap()
+        .into_rgba8();
+    assert_eq!(img.dimensions(), (320, 180));
+    let sky = mean_rgb(&img, 0..20);
+    let water = mean_rgb(&img, 160..180);
+    assert!(sky[2] > 60.0, "no sky: mean {sky:?}");
+    assert!(
+        (0..3).any(|c| (sky[c] - water[c]).abs() > 8.0),
+        "sky and water alike ({sky:?} vs {water:?}): no scene drawn"
+    );
+    // … and the hiding is what made the difference: with the driver list left alone the
+    // same machine's default is Vulkan (lavapipe), where one is installed
+    let default = run(false);
+    if !default.contains("(Gl)") {
+        assert!(default.contains("(Vulkan)"), "{default}");
+    }
+}

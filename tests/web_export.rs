@@ -159,3 +159,55 @@ fn a_broken_formula_fails_export_web_naming_it_unless_keep_going() {
     let o = export_web(dir.path(), &deck, &["--keep-going"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }
+
+/// Scene mode (`Tab`) runs in the page too (issue #25): a project with no `scenes/` or
+/// `shaders/` of its own gets lectern's built-in water scene and every shader the renderer
+/// builds, with their includes, at the paths the player looks for a project's own.
+#[test]
+fn the_bundle_carries_the_built_in_scene_and_shaders_for_scene_mode() {
+    let dir = tempfile::tempdir().unwrap();
+    let slides = dir.path().join("talk/slides");
+    std::fs::create_dir_all(&slides).unwrap();
+    let deck = slides.join("talk.ron");
+    std::fs::write(
+        &deck,
+        r#"(title: "T", slides: [(title: "One", body: [Text("x")])])"#,
+    )
+    .unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_lectern"))
+        // (no scenes/ in the current folder either)
+        .current_dir(dir.path())
+        .env("LECTERN_WEB_PLAYER", fake_player(dir.path()))
+        .env("XDG_CACHE_HOME", dir.path().join("cache"))
+        .arg("export")
+        .arg(&deck)
+        .arg("--web")
+        .arg(dir.path().join("page"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(!err.contains("outside the project"), "{err}");
+    let b = read_bundle(&dir.path().join("page"));
+    let has = |p: &str| b.files.iter().any(|f| f.path == p);
+    assert!(has("scenes/water.ron"), "no scene in the page");
+    let scene = (b.files.iter().find(|f| f.path == "scenes/water.ron")).unwrap();
+    assert_eq!(
+        scene.bytes().unwrap(),
+        lectern::bundled::WATER_SCENE.as_bytes()
+    );
+    for name in lectern::render::pipeline::TECHNIQUE_SHADERS {
+        assert!(has(&format!("shaders/{name}")), "{name} missing");
+    }
+    for include in [
+        "common.wgsl",
+        "encoding.wgsl",
+        "fullscreen.wgsl",
+        "brdf.wgsl",
+    ] {
+        assert!(
+            has(&format!("shaders/{include}")),
+            "include {include} missing"
+        );
+    }
+}

@@ -125,8 +125,8 @@ impl LecternApp {
         }
     }
 
-    /// The web player's app: the desktop's keys less those a page cannot honour (scene mode,
-    /// presenter, ink, files, quit), and the player's `?` list.
+    /// The web player's app: the desktop's keys less those a page cannot honour (presenter,
+    /// ink, files, quit), and the player's `?` list.
     pub fn set_player(&mut self) {
         self.player = true;
     }
@@ -416,8 +416,9 @@ impl LecternApp {
         });
         match scene {
             Ok(view) => {
-                // The panel belongs to the presenter window, or to `C`: no button for the audience.
-                view.controls_button = false;
+                // The panel belongs to the presenter window, or to `C`: no button for the
+                // audience. A page has neither: there the button opens it.
+                view.controls_button = self.player;
                 if self.show_controls {
                     egui::Panel::right("lectern-scene-controls")
                         .resizable(true)
@@ -466,9 +467,10 @@ pub(super) fn scene_panel_ui(
 fn default_scene_path(session: &DeckSession) -> PathBuf {
     let beside = session.folder().join("../scenes/water.ron");
     let here = PathBuf::from(crate::scene::DEFAULT_SCENE);
-    if beside.exists() {
+    // (project files: in the web player the bundle's, where export put the bundled scene)
+    if crate::project_files::is_file(&beside) {
         beside
-    } else if here.exists() {
+    } else if crate::project_files::is_file(&here) {
         here
     } else {
         crate::bundled::bundled_scene_file().unwrap_or(here)
@@ -484,9 +486,8 @@ impl eframe::App for LecternApp {
             });
             self.ink.set_plain_edges(software);
         }
-        // Scene widgets on slides render on the window's device and animate there (not yet in
-        // a browser: WebGL2 lacks what the water needs; the widget shows its exported frame).
-        #[cfg(not(target_arch = "wasm32"))]
+        // Scene widgets on slides render on the window's device and animate there (in a
+        // browser: WebGL2, at the browser's render scale).
         if let Some(rs) = &self.render_state
             && crate::widgets::scene::SceneGpu::get(ui.ctx()).is_none()
         {

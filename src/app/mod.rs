@@ -22,6 +22,7 @@ pub mod plot_data;
 pub mod presenter;
 pub mod scene_mode;
 mod scene_panel;
+mod scene_probe;
 pub mod screens;
 pub mod slide_state;
 pub mod slide_view;

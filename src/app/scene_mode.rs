@@ -8,7 +8,7 @@
 
 use std::collections::VecDeque;
 use std::path::{Path, PathBuf};
-use std::time::Instant;
+use web_time::Instant;
 
 use anyhow::Result;
 
@@ -55,8 +55,12 @@ pub struct SceneMode {
     last_instant: Option<Instant>,
     pub(super) cpu_ms: VecDeque<f32>,
     pub(super) interval_ms: VecDeque<f32>,
+    /// the simulation's share of a frame (the school, the bodies), ms
+    pub(super) step_ms: VecDeque<f32>,
     /// the interval before the newest drawn frame, until [`Self::take_drawn_frame`] reads it
     drawn: Option<f32>,
+    /// scene frames drawn so far (the web player's hook measures fps in the page from it)
+    frames_drawn: u64,
 }
 
 impl SceneMode {
@@ -100,7 +104,9 @@ impl SceneMode {
             last_instant: None,
             cpu_ms: VecDeque::new(),
             interval_ms: VecDeque::new(),
+            step_ms: VecDeque::new(),
             drawn: None,
+            frames_drawn: 0,
         })
     }
 
@@ -155,6 +161,11 @@ impl SceneMode {
         self.drawn.take()
     }
 
+    /// How many scene frames [`Self::ui`] has drawn.
+    pub fn frames_drawn(&self) -> u64 {
+        self.frames_drawn
+    }
+
     /// Steps the simulation by the real time since the last frame (or one step when asked).
     fn step(&mut self) -> f32 {
         let now = Instant::now();
@@ -201,7 +212,9 @@ impl SceneMode {
     /// Draws the scene filling the available rect; drag orbits, scroll zooms.
     pub fn ui(&mut self, ui: &mut egui::Ui, render_state: &egui_wgpu::RenderState) {
         self.poll_reload();
+        let t_step = Instant::now();
         let interval = self.step();
+        push(&mut self.step_ms, t_step.elapsed().as_secs_f32() * 1e3);
         push(&mut self.interval_ms, interval);
         if self.last_instant.is_some() && interval > 0.0 {
             self.quality.observe(interval);
@@ -227,6 +240,7 @@ impl SceneMode {
             .renderer
             .encode_scene(&self.sim.scene, snap, &self.settings, size);
         render_state.queue.submit([enc.finish()]);
+        self.frames_drawn += 1;
         if let Some(output) = self.host.renderer.output(&self.settings) {
             ui.painter().add(egui_wgpu::Callback::new_paint_callback(
                 rect,

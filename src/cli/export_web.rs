@@ -68,6 +68,7 @@ pub fn export_web(deck_path: &Path, out: &Path, player_dir: &Path) -> anyhow::Re
         }
         let _ = crate::app::plot_data::slide_data(slide, &mut state);
     }
+    read_scene_mode_files(&root, &_app.scene_path);
     let deck_in_bundle = bundle_path(&root, &deck_real)
         .ok_or_else(|| anyhow::anyhow!("{} is outside its project folder", deck_real.display()))?;
     let mut bundle = WebBundle::new(deck_in_bundle);
@@ -82,6 +83,27 @@ pub fn export_web(deck_path: &Path, out: &Path, player_dir: &Path) -> anyhow::Re
         files: written,
         failures,
     })
+}
+
+/// Reads (so the recording bundles them) what scene mode (`Tab`) loads in the player though no
+/// slide drew it: the scene file and every technique's shader with its includes. A file that
+/// does not load is left to the player, which shows the scene's error as the desktop does; a
+/// scene found outside the project (the current folder's, for a deck elsewhere) is not the
+/// page's to carry.
+fn read_scene_mode_files(root: &Path, scene_path: &Path) {
+    let real = scene_path
+        .canonicalize()
+        .unwrap_or_else(|_| scene_path.to_path_buf());
+    if bundle_path(root, &real).is_none() && crate::bundled::in_bundled_folder(&real).is_none() {
+        return;
+    }
+    let _ = crate::scene::load_scene(scene_path);
+    let Ok(folder) = crate::bundled::shader_folder_for_scene(scene_path) else {
+        return;
+    };
+    for name in crate::render::pipeline::TECHNIQUE_SHADERS {
+        let _ = crate::render::shaders::load(&folder.dir.join(name));
+    }
 }
 
 /// Each formula asked for, once (at the largest size asked), typeset at twice that size.
@@ -115,7 +137,11 @@ fn typeset_formulas(bundle: &mut WebBundle, asked: Vec<Request>) -> anyhow::Resu
 /// The files read, by their path under `root`.
 fn bundle_files(bundle: &mut WebBundle, root: &Path, read: &[PathBuf]) -> anyhow::Result<()> {
     for path in read {
-        let Some(rel) = bundle_path(root, path) else {
+        // the shaders and scene built into lectern (a project without its own) go where the
+        // player looks for a project's
+        let built_in = crate::bundled::in_bundled_folder(path)
+            .and_then(|rel| rel.to_str().map(|r| r.replace('\\', "/")));
+        let Some(rel) = bundle_path(root, path).or(built_in) else {
             eprintln!(
                 "lectern: warning: {} is outside the project folder {}: left out of the page",
                 path.display(),

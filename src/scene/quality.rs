@@ -100,6 +100,22 @@ pub const LADDER: [Rung; 9] = [
     rung(0.35, 0.0, false, 3, Short6),
 ];
 
+/// The rung the automatic quality starts from, decided here only: the top natively; in a
+/// browser, where WebGL2 often runs on a software rasteriser (SwiftShader) and a slow first
+/// second is what a student sees, a rung drawn at about half size with the far fish mesh
+/// nearly everywhere and the school stepped every other step, from where it climbs when the
+/// frames have room. The Scene widget on a slide draws at its render scale too.
+pub const fn start_rung() -> usize {
+    if cfg!(target_arch = "wasm32") {
+        BROWSER_START_RUNG
+    } else {
+        0
+    }
+}
+
+/// See [`start_rung`]: `lectern render-scene --rung 7` draws what the browser starts with.
+pub const BROWSER_START_RUNG: usize = 6;
+
 /// Frames to wait after a change before judging the new rung.
 const SETTLE_FRAMES: u32 = 4;
 /// Slower than budget × this: one rung down.
@@ -121,7 +137,7 @@ impl QualityController {
     pub fn new(mode: Quality) -> Self {
         Self {
             mode,
-            rung: 0,
+            rung: start_rung(),
             smoothed_ms: None,
             frames_since_change: 0,
         }

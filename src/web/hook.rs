@@ -130,6 +130,11 @@ impl Hook {
         js_sys::Reflect::get(&self.object, &"trackPlot".into()).is_ok_and(|v| v.is_truthy())
     }
 
+    /// `window.lectern` itself (the scene's half adds its functions: [`super::scene_hook`]).
+    pub fn object(&self) -> &js_sys::Object {
+        &self.object
+    }
+
     fn set_ready(&self) {
         let _ = js_sys::Reflect::set(&self.object, &"ready".into(), &JsValue::TRUE);
     }

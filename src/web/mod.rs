@@ -8,6 +8,7 @@
 
 mod hook;
 mod page;
+mod scene_hook;
 
 use std::cell::RefCell;
 use std::rc::Rc;
@@ -50,8 +51,8 @@ async fn run() -> Result<(), String> {
     let app = Rc::new(RefCell::new(app));
     let hook = hook::Hook::install(&window, app.clone())?;
     let mut options = eframe::WebOptions::default();
-    // WebGL2 everywhere (the slides need nothing more, and headless browsers' WebGPU is not
-    // dependable yet); the water scene, which would need more, does not run here anyway.
+    // WebGL2 everywhere (the slides and the water scene need nothing more, issue #25, and
+    // headless browsers' WebGPU is not dependable yet).
     if let egui_wgpu::WgpuSetup::CreateNew(setup) = &mut options.wgpu_options.wgpu_setup {
         setup.instance_descriptor.backends = wgpu::Backends::GL;
     }
@@ -63,6 +64,7 @@ async fn run() -> Result<(), String> {
             Box::new(move |cc| {
                 crate::math::never_wait(&cc.egui_ctx);
                 hook.watch_fragment(&cc.egui_ctx);
+                scene_hook::install(hook.object(), app.clone(), &cc.egui_ctx);
                 Ok(Box::new(hook::Player::new(app, hook)))
             }),
         )

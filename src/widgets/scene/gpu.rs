@@ -53,7 +53,8 @@ impl SceneGpu {
             render_state,
             render_scale: render_scale.clamp(0.25, 1.0),
             animate,
-            watch_files: animate,
+            // (a page's bundle never changes: nothing to watch in a browser)
+            watch_files: animate && !cfg!(target_arch = "wasm32"),
             ctx: ctx.clone(),
             renderers: Arc::default(),
         };
@@ -64,9 +65,13 @@ impl SceneGpu {
         ctx.data(|d| d.get_temp::<Self>(egui::Id::NULL.with("lectern-scene-gpu")))
     }
 
-    /// The window's choice: a software adapter draws the scene at half size.
+    /// The window's choice: a software adapter draws the scene at half size; a browser at
+    /// the render scale of the rung scene mode starts from there
+    /// ([`crate::scene::quality::start_rung`]).
     pub fn render_scale_for(adapter: &wgpu::Adapter) -> f32 {
-        if adapter.get_info().device_type == wgpu::DeviceType::Cpu {
+        if cfg!(target_arch = "wasm32") {
+            crate::scene::quality::LADDER[crate::scene::quality::start_rung()].render_scale
+        } else if adapter.get_info().device_type == wgpu::DeviceType::Cpu {
             0.5
         } else {
             1.0

@@ -32,12 +32,9 @@ use crate::scene::SceneSim;
 /// adapter a frame of the full school costs a large part of a second.
 const PLAYING_FPS: f64 = 12.0;
 
-/// What the widget says where it has no device to draw on (the web player: the water needs what
-/// WebGL2 lacks, so the scene runs in the desktop app only, for now).
-#[cfg(not(target_arch = "wasm32"))]
+/// What the widget says where it has no device to draw on (a headless path without one; in the
+/// web player the device is the page's WebGL2 one, without which no slide draws at all).
 const NO_GPU_NOTE: &str = "the live scene needs the window's GPU";
-#[cfg(target_arch = "wasm32")]
-const NO_GPU_NOTE: &str = "the live water scene runs in the desktop app (lectern present)";
 
 /// Everything a frame depends on: when it is unchanged the texture already holds the frame.
 #[derive(Debug, Clone, PartialEq)]
