@@ -1,5 +1,6 @@
 // tonemap.wgsl — HDR to display (tone mapping): exposure, then the ACES filmic curve in
-// Narkowicz's fit (Narkowicz 2015, "ACES Filmic Tone Mapping Curve", aces.wgsl); the sRGB
+// Narkowicz's fit (Narkowicz 2015, "ACES Filmic Tone Mapping Curve", aces.wgsl), after a white
+// balance (`WHITE_BALANCE` below); the sRGB
 // encoding is done by a *Srgb target format or by `to_target` (srgb.wgsl). `fs_main` draws the
 // display image at the HDR image's size, anti-aliasing geometric edges with FXAA (Lottes 2011,
 // fxaa.wgsl) where the pipeline has it on; `fs_upscale` then scales it up to the output
@@ -26,9 +27,22 @@ struct Post {
 @group(0) @binding(1) var hdr: texture_2d<f32>;
 @group(0) @binding(2) var hdr_sampler: sampler;
 
+// White balance: the scene is lit by its sun (colour (1, 0.92, 0.8) in the scene file, about
+// 5000 K) and Preetham's sky, which is yellow-pink near the sun and the horizon in absolute
+// colour; a camera balanced for that key light maps CIE D50 (x 0.34567, y 0.35850; CIE 15:2004)
+// to the display's D65 white, which leaves the sunlit sand neutral and the sky away from the
+// sun blue. A von Kries adaptation in the Bradford cone space (Lam 1985; the matrices as in
+// Lindbloom, "Chromatic Adaptation", brucelindbloom.com), D50 → D65, for linear sRGB:
+// M = RGB_from_XYZ · Bradford⁻¹ · diag(ρβγ_D65 / ρβγ_D50) · Bradford · XYZ_from_RGB (columns).
+const WHITE_BALANCE = mat3x3f(
+    vec3f(0.93918, 0.00446, 0.00815),
+    vec3f(-0.09428, 1.02437, 0.02947),
+    vec3f(-0.01747, -0.00652, 1.33199));
+
 // The display colour of the HDR image at `uv` (what fxaa.wgsl blends).
 fn display_at(uv: vec2f) -> vec3f {
-    return aces(hdr_load(textureSampleLevel(hdr, hdr_sampler, uv, 0.0).rgb) * post.exposure);
+    let c = hdr_load(textureSampleLevel(hdr, hdr_sampler, uv, 0.0).rgb);
+    return aces(max(WHITE_BALANCE * c, vec3f(0.0)) * post.exposure);
 }
 
 @fragment

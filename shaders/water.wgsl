@@ -155,11 +155,14 @@ fn fs_main(in: VertexOut) -> @location(0) vec4f {
     let fresnel = mix(0.25, 0.02 + 0.98 * pow(1.0 - n_dot_v, 5.0), f32(g.fresnel_on));
     // refraction: follow the refracted ray as far as the straight view ray reaches the scene
     // behind, look the scene up there, and fall back to the straight lookup when that picks up
-    // something in front of the surface (a floating body)
+    // something in front of the surface (a floating body) or lands off the screen (the image
+    // has no texels there: clamping to its edge smeared the border's pixels into streaks)
     let t = refract(-v, n, ETA_AIR_OVER_WATER);
     let guess_m = clamp(straight.a - water_dist, 0.0, 20.0);
-    var seen = below_at(uv_of(in.world_pos + t * guess_m));
-    seen = select(seen, straight, seen.a < water_dist);
+    let uv_refracted = uv_of(in.world_pos + t * guess_m);
+    let on_screen = all(uv_refracted >= vec2f(0.0)) && all(uv_refracted <= vec2f(1.0));
+    var seen = below_at(uv_refracted);
+    seen = select(seen, straight, seen.a < water_dist || !on_screen);
     let path = max(seen.a - water_dist, 0.0);
     let w = water_path(path, 0.0, max(-t.y, 0.0));
     let refracted = seen.rgb * w.transmittance + w.inscatter;

@@ -63,7 +63,7 @@ fn malformed_ron_reports_file_line_and_column() {
 
 #[test]
 fn negative_fish_count_is_a_clear_error() {
-    let text = default_text().replacen("count: 1500", "count: -5", 1);
+    let text = default_text().replacen("count: 450", "count: -5", 1);
     let line = text.lines().position(|l| l.contains("count: -5")).unwrap() + 1;
     let d = scene::parse_scene(&text, Path::new("w.ron")).unwrap_err();
     assert_eq!(d.line, line, "{d}");
@@ -71,7 +71,7 @@ fn negative_fish_count_is_a_clear_error() {
 
 #[test]
 fn a_billion_fish_is_rejected_before_any_allocation() {
-    let text = default_text().replacen("count: 1500", "count: 1000000000", 1);
+    let text = default_text().replacen("count: 450", "count: 1000000000", 1);
     let line = text
         .lines()
         .position(|l| l.contains("count: 1000000000"))
@@ -100,7 +100,7 @@ fn out_of_range_values_name_the_field() {
         ),
         ("turbidity: 2.2", "turbidity: 40.0", "turbidity"),
         (
-            "significant_height: 0.2",
+            "significant_height: 0.12",
             "significant_height: -1.0",
             "significant_height",
         ),

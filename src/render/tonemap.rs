@@ -1,4 +1,4 @@
-//! HDR to display (tonemap.wgsl): exposure and the ACES curve in Narkowicz's fit (Narkowicz
+//! HDR to display (tonemap.wgsl): a white balance (D50 to D65, Bradford), exposure and the ACES curve in Narkowicz's fit (Narkowicz
 //! 2015), with the HDR image scaled up to the display when it was drawn smaller (dynamic
 //! resolution). Two passes: tone mapping (and FXAA on the edges, Lottes 2011, fxaa.wgsl, where
 //! the settings ask for it) at the render size into the display image, then that image scaled

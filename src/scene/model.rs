@@ -38,10 +38,11 @@ pub struct Scene {
 /// gets. (The school's own defaults in `crate::school` are for its tests and widgets.)
 pub fn default_school() -> SchoolParams {
     SchoolParams {
-        count: 1500,
+        count: 450,
         max_speed: 1.6,
-        fish_scale: 0.6,
-        schools: 6,
+        fish_scale: 0.9,
+        schools: 3,
+        alignment_weight: 2.0,
         goal_weight: 0.5,
         spawn_radius: 1.5,
         ..SchoolParams::default()
@@ -96,7 +97,7 @@ impl Default for Simulation {
             integrator: Integrator::Rk4,
             linear_drag_per_sec: 1.0,
             angular_drag_per_sec: 1.5,
-            school_half_width: 11.0,
+            school_half_width: 7.5,
         }
     }
 }
@@ -149,7 +150,7 @@ impl Default for Sky {
     fn default() -> Self {
         Self {
             turbidity: 2.2,
-            radiance_per_kcd: 0.02,
+            radiance_per_kcd: 0.009,
             ground_color: [0.03, 0.06, 0.08],
             sun_size_deg: 1.2,
             sun_disc_intensity: 60.0,
