@@ -20,6 +20,31 @@ pub trait FileSource: Send + Sync {
     fn read(&self, path: &Path) -> io::Result<Vec<u8>>;
     /// Whether `path` is a file this source can read.
     fn is_file(&self, path: &Path) -> bool;
+    /// What names the file at `path` however the path is written (relative or absolute, with
+    /// `.` and `..`, through symbolic links where the source has them): two paths are the same
+    /// file exactly when their identities are equal ([`crate::reload::same_file`]). Without a
+    /// disk there are no links: the lexical form, as a [`Bundle`] stores its paths.
+    fn identity(&self, path: &Path) -> PathBuf {
+        crate::paths::lexical(path)
+    }
+}
+
+/// A path's identity on disk: canonical (links followed) where the file exists; while it is
+/// momentarily gone (an editor's rename save) its canonical folder and its name, so a watcher's
+/// event for the vanished file still names the same file; lexical when not even the folder is
+/// there.
+fn disk_identity(path: &Path) -> PathBuf {
+    let lexical = crate::paths::lexical(path);
+    if let Ok(real) = lexical.canonicalize() {
+        return real;
+    }
+    match (lexical.parent(), lexical.file_name()) {
+        (Some(dir), Some(name)) => dir
+            .canonicalize()
+            .map(|d| d.join(name))
+            .unwrap_or_else(|_| lexical.clone()),
+        _ => lexical,
+    }
 }
 
 /// The files on disk (the desktop app, `lectern check`, `export`).
@@ -31,6 +56,9 @@ impl FileSource for Disk {
     }
     fn is_file(&self, path: &Path) -> bool {
         path.is_file()
+    }
+    fn identity(&self, path: &Path) -> PathBuf {
+        disk_identity(path)
     }
 }
 
@@ -95,14 +123,17 @@ impl Recording {
 impl FileSource for Recording {
     fn read(&self, path: &Path) -> io::Result<Vec<u8>> {
         let bytes = std::fs::read(path)?;
-        self.read.lock().unwrap_or_else(|e| e.into_inner()).insert(
-            path.canonicalize()
-                .unwrap_or_else(|_| crate::paths::lexical(path)),
-        );
+        self.read
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .insert(disk_identity(path));
         Ok(bytes)
     }
     fn is_file(&self, path: &Path) -> bool {
         path.is_file()
+    }
+    fn identity(&self, path: &Path) -> PathBuf {
+        disk_identity(path)
     }
 }
 
@@ -112,6 +143,9 @@ impl<T: FileSource + ?Sized> FileSource for Arc<T> {
     }
     fn is_file(&self, path: &Path) -> bool {
         (**self).is_file(path)
+    }
+    fn identity(&self, path: &Path) -> PathBuf {
+        (**self).identity(path)
     }
 }
 
@@ -141,6 +175,11 @@ pub fn read(path: &Path) -> io::Result<Vec<u8>> {
 /// The text of the project file at `path` (UTF-8).
 pub fn read_to_string(path: &Path) -> io::Result<String> {
     String::from_utf8(read(path)?).map_err(|e| io::Error::new(io::ErrorKind::InvalidData, e))
+}
+
+/// What names the file at `path` in the source in use (see [`FileSource::identity`]).
+pub fn identity(path: &Path) -> PathBuf {
+    source().identity(path)
 }
 
 /// Whether the project file at `path` exists.

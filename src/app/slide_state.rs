@@ -69,7 +69,7 @@ impl SlideState {
                 .widget
                 .ode()
                 .and_then(|o| o.file().map(std::path::Path::to_path_buf))
-                .is_some_and(|f| changed.iter().any(|c| same_file(c, &f)));
+                .is_some_and(|f| crate::reload::any_is(changed, &crate::reload::file_key(&f)));
             if uses {
                 let mut widget = slot.spec.instantiate_in(deck_path.as_deref());
                 carry_tweaks(
@@ -324,16 +324,6 @@ pub struct SlideResponse {
     pub background: egui::Response,
     /// While drawing: the whole canvas, on top of its widgets, sensing clicks and drags.
     pub ink: Option<egui::Response>,
-}
-
-/// Whether two paths name the same file (the watcher reports absolute paths, the deck relative
-/// ones).
-fn same_file(a: &std::path::Path, b: &std::path::Path) -> bool {
-    a == b
-        || match (a.canonicalize(), b.canonicalize()) {
-            (Ok(x), Ok(y)) => x == y,
-            _ => false,
-        }
 }
 
 /// Where a widget was drawn in the last pass: the slot the slide gave it, the rect it used,
