@@ -207,4 +207,17 @@ mod tests {
         assert_eq!(e.kind(), io::ErrorKind::NotFound);
         assert!(!b.is_file(Path::new("slides/problems")));
     }
+
+    #[test]
+    fn a_bundles_identity_is_lexical_and_tells_namesakes_apart() {
+        // no disk behind a bundle: `.` and `..` fold, two folders stay two folders
+        let b = Bundle::new();
+        let id = |p: &str| b.identity(Path::new(p));
+        assert_eq!(
+            id("slides/../problems/x.ron"),
+            id("./problems/x.ron"),
+            "one file however it is written"
+        );
+        assert_ne!(id("shaders/common.wgsl"), id("other/common.wgsl"));
+    }
 }
