@@ -22,6 +22,31 @@ pub trait FileSource: Send + Sync {
     fn is_file(&self, path: &Path) -> bool;
     /// Whether `path` is a folder holding files of this source (a project's `shaders/`).
     fn is_dir(&self, path: &Path) -> bool;
+    /// What names the file at `path` however the path is written (relative or absolute, with
+    /// `.` and `..`, through symbolic links where the source has them): two paths are the same
+    /// file exactly when their identities are equal ([`crate::reload::same_file`]). Without a
+    /// disk there are no links: the lexical form, as a [`Bundle`] stores its paths.
+    fn identity(&self, path: &Path) -> PathBuf {
+        crate::paths::lexical(path)
+    }
+}
+
+/// A path's identity on disk: canonical (links followed) where the file exists; while it is
+/// momentarily gone (an editor's rename save) its canonical folder and its name, so a watcher's
+/// event for the vanished file still names the same file; lexical when not even the folder is
+/// there.
+fn disk_identity(path: &Path) -> PathBuf {
+    let lexical = crate::paths::lexical(path);
+    if let Ok(real) = lexical.canonicalize() {
+        return real;
+    }
+    match (lexical.parent(), lexical.file_name()) {
+        (Some(dir), Some(name)) => dir
+            .canonicalize()
+            .map(|d| d.join(name))
+            .unwrap_or_else(|_| lexical.clone()),
+        _ => lexical,
+    }
 }
 
 /// The files on disk (the desktop app, `lectern check`, `export`).
@@ -36,6 +61,9 @@ impl FileSource for Disk {
     }
     fn is_dir(&self, path: &Path) -> bool {
         path.is_dir()
+    }
+    fn identity(&self, path: &Path) -> PathBuf {
+        disk_identity(path)
     }
 }
 
@@ -105,10 +133,10 @@ impl Recording {
 impl FileSource for Recording {
     fn read(&self, path: &Path) -> io::Result<Vec<u8>> {
         let bytes = std::fs::read(path)?;
-        self.read.lock().unwrap_or_else(|e| e.into_inner()).insert(
-            path.canonicalize()
-                .unwrap_or_else(|_| crate::paths::lexical(path)),
-        );
+        self.read
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .insert(disk_identity(path));
         Ok(bytes)
     }
     fn is_file(&self, path: &Path) -> bool {
@@ -116,6 +144,9 @@ impl FileSource for Recording {
     }
     fn is_dir(&self, path: &Path) -> bool {
         path.is_dir()
+    }
+    fn identity(&self, path: &Path) -> PathBuf {
+        disk_identity(path)
     }
 }
 
@@ -128,6 +159,9 @@ impl<T: FileSource + ?Sized> FileSource for Arc<T> {
     }
     fn is_dir(&self, path: &Path) -> bool {
         (**self).is_dir(path)
+    }
+    fn identity(&self, path: &Path) -> PathBuf {
+        (**self).identity(path)
     }
 }
 
@@ -157,6 +191,11 @@ pub fn read(path: &Path) -> io::Result<Vec<u8>> {
 /// The text of the project file at `path` (UTF-8).
 pub fn read_to_string(path: &Path) -> io::Result<String> {
     String::from_utf8(read(path)?).map_err(|e| io::Error::new(io::ErrorKind::InvalidData, e))
+}
+
+/// What names the file at `path` in the source in use (see [`FileSource::identity`]).
+pub fn identity(path: &Path) -> PathBuf {
+    source().identity(path)
 }
 
 /// Whether the project file at `path` exists.
@@ -190,5 +229,18 @@ mod tests {
         assert!(!b.is_file(Path::new("slides/problems")));
         assert!(b.is_dir(Path::new("slides/problems")) && b.is_dir(Path::new("./slides")));
         assert!(!b.is_dir(Path::new("slides/problems/a.ron")) && !b.is_dir(Path::new("shaders")));
+    }
+
+    #[test]
+    fn a_bundles_identity_is_lexical_and_tells_namesakes_apart() {
+        // no disk behind a bundle: `.` and `..` fold, two folders stay two folders
+        let b = Bundle::new();
+        let id = |p: &str| b.identity(Path::new(p));
+        assert_eq!(
+            id("slides/../problems/x.ron"),
+            id("./problems/x.ron"),
+            "one file however it is written"
+        );
+        assert_ne!(id("shaders/common.wgsl"), id("other/common.wgsl"));
     }
 }

@@ -818,3 +818,68 @@ fn parameters_and_typed_equations_write_back_to_the_deck_or_the_problem_file() {
     let reread = fresh.widget_at(&[0]).unwrap().ode().unwrap();
     assert_eq!(reread.def().unwrap().exact, None, "no stale exact solution");
 }
+
+/// The watcher reports a problem file by its real absolute path; the deck names it relatively
+/// (`../problems/decay.ron`), here through a symbolic link to the project as well. Those are one
+/// file; a file of the same name in another folder is not. A broken save keeps the last good
+/// equation and names the file's line and column; an empty one (mid-save) is waited for.
+#[cfg(unix)]
+#[test]
+fn a_problem_file_reloads_by_the_watchers_path_however_the_deck_names_it() {
+    use lectern::app::SlideState;
+    use lectern::widgets::ParamSnapshot;
+    let (dir, _) =
+        project(r#"Widget(Neptune((ode: File("../problems/decay.ron"), h: 0.3, t_end: 4.0)))"#);
+    let original = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("slides/problems/decay.ron"),
+    )
+    .unwrap();
+    assert!(original.contains("{\"lambda\": -5.0}"));
+    for folder in ["problems", "other"] {
+        std::fs::create_dir_all(dir.path().join(folder)).unwrap();
+        std::fs::write(dir.path().join(folder).join("decay.ron"), &original).unwrap();
+    }
+    let links = tempfile::tempdir().unwrap();
+    let linked = links.path().join("talk");
+    std::os::unix::fs::symlink(dir.path(), &linked).unwrap();
+    let deck_path = linked.join("slides/talk.ron");
+    let real = dir.path().canonicalize().unwrap();
+    let (watched, namesake) = (
+        real.join("problems/decay.ron"),
+        real.join("other/decay.ron"),
+    );
+
+    let deck = load_deck(&deck_path).unwrap();
+    let mut state = SlideState::default();
+    state.set_deck_path(Some(&deck_path));
+    state.ensure_widgets(&deck.slides[0]);
+    let lambda = |state: &mut SlideState| state.param(&[0], "lambda");
+    assert_eq!(lambda(&mut state), Some(ParamSnapshot::F64(-5.0)));
+
+    let edited = original.replace("{\"lambda\": -5.0}", "{\"lambda\": -2.0}");
+    std::fs::write(&watched, &edited).unwrap();
+    std::fs::write(&namesake, &edited).unwrap();
+    state.reload_problem_files(std::slice::from_ref(&namesake));
+    assert_eq!(
+        lambda(&mut state),
+        Some(ParamSnapshot::F64(-5.0)),
+        "a same-named file in another folder is another file"
+    );
+    state.reload_problem_files(std::slice::from_ref(&watched));
+    assert_eq!(lambda(&mut state), Some(ParamSnapshot::F64(-2.0)));
+
+    // mid-save: empty; nothing is reported and the equation stays
+    std::fs::write(&watched, "").unwrap();
+    state.reload_problem_files(std::slice::from_ref(&watched));
+    let ode = state.widget_at(&[0]).unwrap().ode().unwrap();
+    assert_eq!(ode.load_error(), None, "an empty file is not an error");
+    assert_eq!(lambda(&mut state), Some(ParamSnapshot::F64(-2.0)));
+
+    // broken: the last good equation stays, the error names decay.ron:line:col
+    std::fs::write(&watched, edited.replacen('(', "(\n  oops,", 1)).unwrap();
+    state.reload_problem_files(std::slice::from_ref(&watched));
+    assert_eq!(lambda(&mut state), Some(ParamSnapshot::F64(-2.0)));
+    let ode = state.widget_at(&[0]).unwrap().ode().unwrap();
+    let error = ode.load_error().expect("the broken save is reported");
+    assert!(error.contains("decay.ron:3:"), "{error}");
+}

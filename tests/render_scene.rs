@@ -221,6 +221,49 @@ fn hot_reload_keeps_the_old_pipeline_on_error_and_swaps_in_the_fix() {
     );
 }
 
+#[test]
+fn a_saved_common_wgsl_rebuilds_only_the_techniques_of_its_own_folder() {
+    // two shader folders, each with its own common.wgsl; the renderer is built from `mine`
+    let (mine, other) = (tempfile::tempdir().unwrap(), tempfile::tempdir().unwrap());
+    copy_shaders(mine.path());
+    copy_shaders(other.path());
+    let mut h = headless(mine.path());
+    let line_of = |path: &Path| {
+        std::fs::read_to_string(path)
+            .unwrap()
+            .lines()
+            .position(|l| l.contains("let d = w.direction;"))
+            .unwrap()
+            + 1
+    };
+    // the other folder's namesake, broken: nothing here is rebuilt, nothing reported
+    let theirs = other.path().join("common.wgsl");
+    break_line(&theirs, line_of(&theirs));
+    assert!(
+        !h.renderer.reload_shaders(std::slice::from_ref(&theirs)),
+        "a common.wgsl in another folder must not rebuild this renderer's techniques"
+    );
+    assert!(
+        h.renderer.shader_errors().is_empty(),
+        "{:?}",
+        h.renderer.shader_errors()
+    );
+    // this folder's own, written the long way round: the same file, so its users rebuild, fail,
+    // and keep their last good pipelines with the error at common.wgsl's own line
+    let ours = mine.path().join("common.wgsl");
+    let line = line_of(&ours);
+    break_line(&ours, line);
+    let written = mine.path().join("sub/../common.wgsl");
+    assert!(h.renderer.reload_shaders(std::slice::from_ref(&written)));
+    let errors = h.renderer.shader_errors();
+    assert!(!errors.is_empty());
+    for d in &errors {
+        assert_eq!((d.file.as_path(), d.line), (ours.as_path(), line), "{d}");
+        assert!(d.col > 0, "{d}");
+    }
+    assert!(h.render(SIZE).is_ok(), "the last good pipelines still draw");
+}
+
 /// The golden frames (name, image) of `h` (caustics off): two times, each debug view, and
 /// one with caustics on.
 fn golden_frames(h: &mut Headless) -> Vec<(String, image::RgbaImage)> {

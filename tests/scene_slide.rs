@@ -422,8 +422,8 @@ fn saved_shaders_and_scene_files_reach_the_slides() {
     });
     let frames = w.borrow().frames_rendered();
     std::fs::write(&scene_file, "(sky: ").unwrap();
-    wait_for("a broken scene is named", &|w| {
-        w.problems().iter().any(|p| p.contains("water.ron"))
+    wait_for("a broken scene is named at its line and column", &|w| {
+        w.problems().iter().any(|p| p.contains("water.ron:1:"))
     });
     let w = w.borrow();
     assert!(w.frames_rendered() > frames);

@@ -193,7 +193,7 @@ fn the_bundle_carries_the_built_in_scene_and_shaders_for_scene_mode() {
     assert!(has("scenes/water.ron"), "no scene in the page");
     let scene = (b.files.iter().find(|f| f.path == "scenes/water.ron")).unwrap();
     assert_eq!(
-        scene.bytes().unwrap(),
+        b.bytes_of(scene).unwrap(),
         lectern::bundled::WATER_SCENE.as_bytes()
     );
     for name in lectern::render::pipeline::TECHNIQUE_SHADERS {

@@ -46,7 +46,8 @@ impl SlideState {
             .and_modify(|slot| {
                 if slot.spec != *spec {
                     let mut widget = spec.instantiate_in(deck_path);
-                    carry_tweaks(&slot.spec, slot.widget.as_mut(), widget.as_mut(), deck_path);
+                    let old_file = file_values(&slot.spec, deck_path);
+                    carry_tweaks(&old_file, slot.widget.as_mut(), widget.as_mut());
                     *slot = WidgetSlot {
                         spec: spec.clone(),
                         widget,
@@ -61,25 +62,34 @@ impl SlideState {
     }
 
     /// After problem files changed on disk: widgets whose equation comes from one of `changed`
-    /// are made again (their tweaks carried over; a broken file keeps the last good equation).
+    /// (by [`crate::reload::same_file`]'s rule) are made again (their tweaks carried over; a
+    /// broken file keeps the last good equation). A file caught empty mid-save is waited for,
+    /// as every reloaded file is ([`crate::reload::Settled::NotReady`]), not reported.
     pub fn reload_problem_files(&mut self, changed: &[std::path::PathBuf]) {
+        use crate::reload::{Settled, any_is, file_key, read_settled};
         let deck_path = self.deck_path.clone();
         for slot in self.widgets.values_mut() {
-            let uses = slot
-                .widget
-                .ode()
-                .and_then(|o| o.file().map(std::path::Path::to_path_buf))
-                .is_some_and(|f| changed.iter().any(|c| same_file(c, &f)));
-            if uses {
-                let mut widget = slot.spec.instantiate_in(deck_path.as_deref());
-                carry_tweaks(
-                    &slot.spec,
-                    slot.widget.as_mut(),
-                    widget.as_mut(),
-                    deck_path.as_deref(),
-                );
-                slot.widget = widget;
+            let file = (slot.widget.ode()).and_then(|o| o.file().map(std::path::Path::to_path_buf));
+            let Some(file) = file.filter(|f| any_is(changed, &file_key(f))) else {
+                continue;
+            };
+            if read_settled(&file) == Settled::NotReady {
+                continue;
             }
+            // the file's values as they were before this save (re-making the old spec would
+            // read the new file): a value the file changed is not a tweak to keep
+            let mut old_file = file_values(&slot.spec, deck_path.as_deref());
+            if let Some(def) = slot.widget.ode().and_then(|o| o.file_def()) {
+                for (name, value) in &def.params {
+                    match old_file.iter_mut().find(|(id, _)| id == name) {
+                        Some(entry) => entry.1 = ParamSnapshot::F64(*value),
+                        None => old_file.push((name.clone(), ParamSnapshot::F64(*value))),
+                    }
+                }
+            }
+            let mut widget = slot.spec.instantiate_in(deck_path.as_deref());
+            carry_tweaks(&old_file, slot.widget.as_mut(), widget.as_mut());
+            slot.widget = widget;
         }
     }
 
@@ -109,12 +119,8 @@ impl SlideState {
         let fresh = !matches!(self.previews.get(path), Some((d, _)) if *d == def);
         if fresh {
             let mut widget = live.spec.instantiate_in(deck_path.as_deref());
-            carry_tweaks(
-                &live.spec,
-                live.widget.as_mut(),
-                widget.as_mut(),
-                deck_path.as_deref(),
-            );
+            let old_file = file_values(&live.spec, deck_path.as_deref());
+            carry_tweaks(&old_file, live.widget.as_mut(), widget.as_mut());
             widget.ode()?.show_def(def.clone());
             let slot = WidgetSlot {
                 spec: live.spec.clone(),
@@ -258,19 +264,26 @@ impl SlideState {
 /// A slide's live values: per widget path, (parameter id, value).
 pub type TweakSnapshot = Vec<(Vec<usize>, Vec<(String, ParamSnapshot)>)>;
 
-/// After a reload changed a widget's spec: the new widget takes the live values the lecturer
+/// The values the files give a widget made from `spec` (its "untweaked" values).
+fn file_values(
+    spec: &WidgetSpec,
+    deck_path: Option<&std::path::Path>,
+) -> Vec<(String, ParamSnapshot)> {
+    params::snapshot(spec.instantiate_in(deck_path).as_mut())
+}
+
+/// After a reload changed a widget's spec (or a file it reads): `old_file` is what the files
+/// gave the old widget; the new widget takes the live values the lecturer
 /// tweaked, except where the file changed that very value (then the file wins). Its equation
 /// keeps what was typed live the same way, and the last good equation if the new one is broken.
 fn carry_tweaks(
-    old_spec: &WidgetSpec,
+    old_file: &[(String, ParamSnapshot)],
     live: &mut dyn SlideWidget,
     new: &mut dyn SlideWidget,
-    deck_path: Option<&std::path::Path>,
 ) {
     if let (Some(old), Some(fresh)) = (live.ode(), new.ode()) {
         fresh.carry_from(old);
     }
-    let old_file = params::snapshot(old_spec.instantiate_in(deck_path).as_mut());
     let new_file = params::snapshot(new);
     let keep: Vec<(String, ParamSnapshot)> = params::snapshot(live)
         .into_iter()
@@ -324,16 +337,6 @@ pub struct SlideResponse {
     pub background: egui::Response,
     /// While drawing: the whole canvas, on top of its widgets, sensing clicks and drags.
     pub ink: Option<egui::Response>,
-}
-
-/// Whether two paths name the same file (the watcher reports absolute paths, the deck relative
-/// ones).
-fn same_file(a: &std::path::Path, b: &std::path::Path) -> bool {
-    a == b
-        || match (a.canonicalize(), b.canonicalize()) {
-            (Ok(x), Ok(y)) => x == y,
-            _ => false,
-        }
 }
 
 /// Where a widget was drawn in the last pass: the slot the slide gave it, the rect it used,

@@ -132,6 +132,19 @@ pub struct Request {
     pub rgba: [u8; 4],
 }
 
+/// A typesetting job's state as seen from outside, the same for both pools (the native one's
+/// workers, the web player's table of prerendered formulas, which is always `Done`).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Poll {
+    Pending,
+    Done(Result<RenderedFormula, MathError>),
+    /// Dropped unstarted: submit it again if it is still wanted.
+    Expired,
+}
+
+/// Called when a job the caller waits for is done (e.g. to repaint), for both pools.
+pub type Notify = std::sync::Arc<dyn Fn() + Send + Sync>;
+
 #[cfg(test)]
 mod tests {
     use super::*;

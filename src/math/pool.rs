@@ -18,6 +18,7 @@ use std::sync::mpsc::{RecvTimeoutError, channel};
 use std::sync::{Arc, Condvar, Mutex, OnceLock};
 use std::time::{Duration, Instant};
 
+pub use super::formula::{Notify, Poll};
 use super::typeset::{MathError, RenderedFormula};
 use super::wire::Request;
 use super::worker::{Bounds, Failure, TYPESET_STACK_BYTES, WorkerProcess};
@@ -28,8 +29,6 @@ pub const EXPIRE: Duration = Duration::from_secs(10);
 /// Worker threads (each with its own process). Two: one formula that runs to its time budget
 /// does not hold up the others, and the workers run at low priority beside the window.
 const WORKERS: usize = 2;
-
-pub type Notify = Arc<dyn Fn() + Send + Sync>;
 
 /// One formula asked for: its request and, once done, its result.
 pub struct Job {
@@ -51,15 +50,6 @@ enum State {
     Queued,
     Running,
     Done(Result<RenderedFormula, MathError>),
-    Expired,
-}
-
-/// A job's state as seen from outside.
-#[derive(Debug, Clone, PartialEq)]
-pub enum Poll {
-    Pending,
-    Done(Result<RenderedFormula, MathError>),
-    /// Dropped unstarted: submit it again if it is still wanted.
     Expired,
 }
 

@@ -10,8 +10,7 @@ use std::collections::HashMap;
 use std::sync::{Arc, OnceLock};
 
 use super::formula::{MathError, MathStyle, MathSyntax, RenderedFormula, Request};
-
-pub type Notify = Arc<dyn Fn() + Send + Sync>;
+pub use super::formula::{Notify, Poll};
 
 /// One formula as the export typeset it.
 #[derive(Debug, Clone, PartialEq)]
@@ -42,14 +41,6 @@ pub fn install(formulas: impl IntoIterator<Item = Prerendered>) {
 pub struct Job {
     pub req: Request,
     result: Result<RenderedFormula, MathError>,
-}
-
-/// A job's state as seen from outside (here always `Done`).
-#[derive(Debug, Clone, PartialEq)]
-pub enum Poll {
-    Pending,
-    Done(Result<RenderedFormula, MathError>),
-    Expired,
 }
 
 impl Job {

@@ -25,10 +25,10 @@ pub enum Reloaded {
 
 pub struct LiveFile<T> {
     path: PathBuf,
-    /// `path` made absolute once, to compare with what the watcher reports.
-    abs_path: PathBuf,
+    /// `path`'s [`super::file_key`], once, to compare with what the watcher reports.
+    key: PathBuf,
     parse: Parser<T>,
-    holder: LastGood<T>,
+    holder: LastGood<Option<T>>,
     /// The text of the last version parsed (good or bad), so a save with unchanged bytes
     /// (editors touch files; watchers send duplicates) is not a reload.
     last_text: Option<String>,
@@ -39,10 +39,10 @@ impl<T> LiveFile<T> {
     /// which the caller may treat as fatal at start-up.
     pub fn open(path: impl Into<PathBuf>, parse: Parser<T>) -> Self {
         let path = path.into();
-        let abs_path = absolute(&path);
+        let key = super::file_key(&path);
         let mut live = Self {
             path,
-            abs_path,
+            key,
             parse,
             holder: LastGood::default(),
             last_text: None,
@@ -53,8 +53,8 @@ impl<T> LiveFile<T> {
             }
             Settled::NotReady => live
                 .holder
-                .update(Err(Diagnostic::whole_file(&live.path, "the file is empty"))),
-            Settled::Missing => live.holder.update(Err(Diagnostic::whole_file(
+                .update_some(Err(Diagnostic::whole_file(&live.path, "the file is empty"))),
+            Settled::Missing => live.holder.update_some(Err(Diagnostic::whole_file(
                 &live.path,
                 "cannot read the file (missing or no permission)",
             ))),
@@ -68,11 +68,11 @@ impl<T> LiveFile<T> {
 
     /// The last good version, if there ever was one.
     pub fn value(&self) -> Option<&T> {
-        self.holder.value()
+        self.holder.value().as_ref()
     }
 
     pub fn value_mut(&mut self) -> Option<&mut T> {
-        self.holder.value_mut()
+        self.holder.value_mut().as_mut()
     }
 
     /// The error of the newest version, if it is broken.
@@ -93,7 +93,7 @@ impl<T> LiveFile<T> {
 
     /// Whether any of `changed` (as reported by a [`super::DirWatcher`]) is this file.
     pub fn is_affected_by(&self, changed: &[PathBuf]) -> bool {
-        changed.iter().any(|p| absolute(p) == self.abs_path)
+        super::any_is(changed, &self.key)
     }
 
     /// Takes a batch of changed paths; reloads if this file is among them.
@@ -118,7 +118,7 @@ impl<T> LiveFile<T> {
                     "the file is gone; showing the last good version",
                 );
                 self.last_text = None;
-                self.holder.update(Err(d.clone()));
+                self.holder.update_some(Err(d.clone()));
                 return Reloaded::Failed(d);
             }
         };
@@ -129,35 +129,14 @@ impl<T> LiveFile<T> {
         self.last_text = Some(text);
         match result {
             Ok(v) => {
-                self.holder.update(Ok(v));
+                self.holder.update_some(Ok(v));
                 Reloaded::Updated
             }
             Err(d) => {
-                self.holder.update(Err(d.clone()));
+                self.holder.update_some(Err(d.clone()));
                 Reloaded::Failed(d)
             }
         }
-    }
-}
-
-/// An absolute, symlink-resolved path where possible; the folder is resolved even when the file
-/// itself is momentarily gone (renamed away mid-save).
-fn absolute(p: &Path) -> PathBuf {
-    if let Ok(c) = p.canonicalize() {
-        return c;
-    }
-    match (p.parent(), p.file_name()) {
-        (Some(dir), Some(name)) => {
-            let dir = if dir.as_os_str().is_empty() {
-                Path::new(".")
-            } else {
-                dir
-            };
-            dir.canonicalize()
-                .map(|d| d.join(name))
-                .unwrap_or_else(|_| p.to_path_buf())
-        }
-        _ => p.to_path_buf(),
     }
 }
 

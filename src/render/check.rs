@@ -63,20 +63,20 @@ pub fn check_shader_file(path: &Path) -> Vec<Diagnostic> {
         return checker.check_entry(path, &src.text);
     }
     // include-only: through every shader of the folder that includes it
-    let name = path.file_name();
+    let me = crate::reload::file_key(path);
     let mut out: Vec<Diagnostic> = Vec::new();
     for user in shaders::list(dir) {
         let Ok(user_src) = shaders::load(&user) else {
             continue;
         };
-        if user == path
+        if crate::reload::same_file(&user, path)
             || !shaders::has_entry_point(&user_src.text)
-            || !user_src.files.iter().any(|f| f.file_name() == name)
+            || !crate::reload::any_is(&user_src.files, &me)
         {
             continue;
         }
         for d in checker.check_entry(&user, &user_src.text) {
-            if d.file.file_name() == name && !out.contains(&d) {
+            if crate::reload::file_key(&d.file) == me && !out.contains(&d) {
                 out.push(d);
             }
         }
@@ -106,9 +106,10 @@ impl Checker {
                     caps: &caps,
                 };
                 let dir = path.parent().unwrap_or(Path::new("."));
-                let me = path.file_name();
                 let built = check_techniques(&env, dir, &|files: &[PathBuf]| {
-                    files.first().is_some_and(|f| f.file_name() == me)
+                    files
+                        .first()
+                        .is_some_and(|f| crate::reload::same_file(f, path))
                 });
                 // anything wgpu could not attribute to a scope would otherwise be lost
                 let stray = gpu.errors.take();

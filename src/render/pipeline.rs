@@ -9,6 +9,7 @@ use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 
 use crate::diag::Diagnostic;
+use crate::reload::{self, LastGood};
 
 use super::caps::RenderCaps;
 use super::frame::{ShadowFilter, WaterNormals};
@@ -251,15 +252,14 @@ pub fn build<T: Technique>(env: &BuildEnv, path: &Path) -> Result<T, Vec<Diagnos
     }
 }
 
-/// A technique in use: its pipelines, the files they were built from, and the problems of the
-/// newest attempt (the previous pipelines stay in use meanwhile).
+/// A technique in use: its pipelines in the app's one last-good holder (a rebuild that fails
+/// keeps the previous pipelines in use and records its problems), and the files they were built
+/// from.
 pub struct Live<T> {
-    pub current: T,
-    /// bumped on every successful rebuild
-    pub generation: u64,
+    pipelines: LastGood<T>,
     path: PathBuf,
-    files: Vec<PathBuf>,
-    errors: Vec<Diagnostic>,
+    /// the [`reload::file_key`] of the shader and of each of its includes
+    file_keys: Vec<PathBuf>,
 }
 
 impl<T: Technique> Live<T> {
@@ -268,43 +268,48 @@ impl<T: Technique> Live<T> {
         let path = dir.join(T::SHADER);
         let current = build::<T>(env, &path).map_err(first)?;
         Ok(Self {
-            current,
-            generation: 0,
-            files: files_of(&path),
+            pipelines: LastGood::new(current),
+            file_keys: file_keys_of(&path),
             path,
-            errors: Vec::new(),
         })
     }
 
-    /// Rebuilds when any of `changed` is this technique's file or one of its includes.
+    /// Rebuilds when any of `changed` is this technique's file or one of its includes (the
+    /// same file by [`reload::same_file`]'s rule, not a file of the same name elsewhere).
     pub fn reload(&mut self, env: &BuildEnv, changed: &[PathBuf]) -> bool {
-        let same = |a: &Path, b: &Path| a.file_name() == b.file_name();
-        if !changed
-            .iter()
-            .any(|c| self.files.iter().any(|f| same(c, f)))
-        {
+        let changed_keys: Vec<PathBuf> = changed.iter().map(|c| reload::file_key(c)).collect();
+        if !changed_keys.iter().any(|c| self.file_keys.contains(c)) {
             return false;
         }
-        self.files = files_of(&self.path);
-        match build::<T>(env, &self.path) {
-            Ok(t) => {
-                self.current = t;
-                self.generation += 1;
-                self.errors.clear();
-            }
-            Err(ds) => {
-                for d in &ds {
-                    tracing::warn!("{d}");
-                }
-                self.errors = ds;
+        self.file_keys = file_keys_of(&self.path);
+        let built = build::<T>(env, &self.path);
+        if let Err(ds) = &built {
+            for d in ds {
+                tracing::warn!("{d}");
             }
         }
+        self.pipelines.update_all(built);
         true
     }
 
-    pub fn errors(&self) -> &[Diagnostic] {
-        &self.errors
+    /// The pipelines in use: the last ones that built.
+    pub fn current(&self) -> &T {
+        self.pipelines.value()
     }
+
+    /// Bumped on every successful rebuild.
+    pub fn generation(&self) -> u64 {
+        self.pipelines.generation()
+    }
+
+    /// The problems of the newest rebuild, if it failed.
+    pub fn errors(&self) -> &[Diagnostic] {
+        self.pipelines.errors()
+    }
+}
+
+fn file_keys_of(path: &Path) -> Vec<PathBuf> {
+    files_of(path).iter().map(|f| reload::file_key(f)).collect()
 }
 
 fn first(mut ds: Vec<Diagnostic>) -> Diagnostic {

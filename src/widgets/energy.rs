@@ -328,7 +328,7 @@ impl SlideWidget for Energy {
 
     fn params(&mut self) -> Vec<Param<'_>> {
         let mut v = vec![
-            Param::f64_log("h", "step h", &mut self.spec.h, H_RANGE.0, H_RANGE.1),
+            Param::step_h(&mut self.spec.h, H_RANGE),
             Param::f64_log(
                 "rtol",
                 "rtol (adaptive)",

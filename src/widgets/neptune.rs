@@ -314,13 +314,7 @@ impl SlideWidget for Neptune {
     }
 
     fn params(&mut self) -> Vec<Param<'_>> {
-        let mut v = vec![Param::f64_log(
-            "h",
-            "step h",
-            &mut self.spec.h,
-            H_RANGE.0,
-            H_RANGE.1,
-        )];
+        let mut v = vec![Param::step_h(&mut self.spec.h, H_RANGE)];
         v.extend(self.methods.params());
         v.extend(self.ode.params());
         v

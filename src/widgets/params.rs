@@ -89,6 +89,12 @@ impl<'a> Param<'a> {
             },
         }
     }
+    /// The step size `h` of the integrator widgets, on a log slider over `range`: one id
+    /// ("h", what bookmarks, `[`/`]` and write-back name) and one label for all of them.
+    pub fn step_h(value: &'a mut f64, range: (f64, f64)) -> Self {
+        Self::f64_log("h", "step h", value, range.0, range.1)
+    }
+
     pub fn f64_log(
         id: impl Into<String>,
         label: impl Into<String>,

@@ -463,13 +463,7 @@ impl SlideWidget for SlopeField {
     fn params(&mut self) -> Vec<Param<'_>> {
         self.ensure_defaults();
         let (x0, x1, y0, y1) = self.spec.view.unwrap_or((0.0, 1.0, 0.0, 1.0));
-        let mut v = vec![Param::f64_log(
-            "h",
-            "step h",
-            &mut self.spec.h,
-            H_RANGE.0,
-            H_RANGE.1,
-        )];
+        let mut v = vec![Param::step_h(&mut self.spec.h, H_RANGE)];
         if let Some(start) = self.spec.start.as_mut() {
             v.push(Param::f64(
                 "start.0",

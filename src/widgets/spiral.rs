@@ -257,7 +257,7 @@ impl SlideWidget for Spiral {
 
     fn params(&mut self) -> Vec<Param<'_>> {
         let mut v = vec![
-            Param::f64_log("h", "step h", &mut self.spec.h, H_RANGE.0, H_RANGE.1),
+            Param::step_h(&mut self.spec.h, H_RANGE),
             Param::f64("turns", "revolutions", &mut self.spec.turns, 0.5, 10.0),
             Param::bool("compare", "other methods beside", &mut self.spec.compare),
         ];

@@ -75,11 +75,11 @@ impl Renderer {
         let p = &self.passes;
         Some(match settings.debug_view {
             DebugView::ShadowMap | DebugView::EnvCube | DebugView::CausticsMap => OutputDraw {
-                pipeline: p.debug.current.pipeline.clone(),
+                pipeline: p.debug.current().pipeline.clone(),
                 bind_group: self.debug_group.clone(),
             },
             DebugView::None | DebugView::Normals => OutputDraw {
-                pipeline: p.tonemap.current.upscale.clone(),
+                pipeline: p.tonemap.current().upscale.clone(),
                 bind_group: t.upscale.clone(),
             },
         })
@@ -158,14 +158,14 @@ impl Renderer {
                 depth_stencil_attachment: cleared_depth(&self.shadow_view),
                 ..Default::default()
             });
-            pass.set_pipeline(&p.shadow.current.pipeline);
+            pass.set_pipeline(&p.shadow.current().pipeline);
             pass.set_bind_group(0, &self.shadow_frame_group, &[]);
             for o in res.objects.iter().filter(|o| o.casts_shadow) {
                 pass.set_bind_group(1, &o.bind_group, &[]);
                 o.mesh.draw(&mut pass, 1);
             }
             if settings.fish_shadows && !ranges.all.is_empty() {
-                pass.set_pipeline(&p.fish.current.shadow);
+                pass.set_pipeline(&p.fish.current().shadow);
                 pass.set_bind_group(0, &self.shadow_frame_group, &[]);
                 pass.set_vertex_buffer(1, res.fish_instances.slice(..));
                 res.fish_meshes.lods[FAR_LEVEL].draw_instances(&mut pass, ranges.all.clone());
@@ -177,7 +177,7 @@ impl Renderer {
         if settings.caustics || settings.debug_view == DebugView::CausticsMap {
             caustics::encode(
                 &mut enc,
-                &p.caustics.current,
+                p.caustics.current(),
                 &self.shadow_frame_group,
                 &self.caustics_view,
                 f64::from(self.caps.encoding.caustics_store_scale),
@@ -193,14 +193,14 @@ impl Renderer {
                 ..Default::default()
             });
             pass.set_bind_group(0, &self.frame_group, &[]);
-            pass.set_pipeline(p.pbr.current.pipeline.get(settings.shadow_filter));
+            pass.set_pipeline(p.pbr.current().pipeline.get(settings.shadow_filter));
             for o in &res.objects {
                 pass.set_bind_group(1, &res.materials[o.material].bind_group, &[]);
                 pass.set_bind_group(2, &o.bind_group, &[]);
                 o.mesh.draw_detail(&mut pass, settings.coarse_grids);
             }
             if ranges.visible_count() > 0 {
-                pass.set_pipeline(p.fish.current.main.get(settings.shadow_filter));
+                pass.set_pipeline(p.fish.current().main.get(settings.shadow_filter));
                 pass.set_bind_group(1, &res.materials[res.fish_material].bind_group, &[]);
                 pass.set_vertex_buffer(1, res.fish_instances.slice(..));
                 for (mesh, range) in res.fish_meshes.lods.iter().zip(&ranges.visible) {
@@ -208,7 +208,7 @@ impl Renderer {
                 }
             }
             // last, so the depth test skips every covered pixel
-            pass.set_pipeline(&p.sky.current.background);
+            pass.set_pipeline(&p.sky.current().background);
             pass.draw(0..3, 0..1);
         }
 
@@ -242,7 +242,7 @@ impl Renderer {
             });
             pass.set_pipeline(
                 p.water
-                    .current
+                    .current()
                     .get(settings.shadow_filter, settings.water_normals),
             );
             pass.set_bind_group(0, &self.frame_group, &[]);
@@ -264,7 +264,7 @@ impl Renderer {
                 color_attachments: &[cleared_color(&t.display_view, wgpu::Color::BLACK)],
                 ..Default::default()
             });
-            pass.set_pipeline(p.tonemap.current.get(settings.fxaa));
+            pass.set_pipeline(p.tonemap.current().get(settings.fxaa));
             pass.set_bind_group(0, &t.tonemap, &[]);
             pass.draw(0..3, 0..1);
         }

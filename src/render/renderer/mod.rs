@@ -144,7 +144,7 @@ impl Renderer {
             device,
             queue,
             &layouts,
-            (&passes.sky.current, &passes.prefilter.current),
+            (passes.sky.current(), passes.prefilter.current()),
             &sky_key,
             &linear_clamp,
             &caps,
@@ -225,12 +225,15 @@ impl Renderer {
             &self.device,
             &self.queue,
             &self.layouts,
-            (&self.passes.sky.current, &self.passes.prefilter.current),
+            (self.passes.sky.current(), self.passes.prefilter.current()),
             &self.sky_key,
             &self.linear_clamp,
             &self.caps,
         );
-        self.sky_generations = (self.passes.sky.generation, self.passes.prefilter.generation);
+        self.sky_generations = (
+            self.passes.sky.generation(),
+            self.passes.prefilter.generation(),
+        );
         self.env_changed();
     }
 
@@ -244,7 +247,11 @@ impl Renderer {
             caps: &self.caps,
         };
         let any = self.passes.reload(&env, changed);
-        if (self.passes.sky.generation, self.passes.prefilter.generation) != self.sky_generations {
+        if (
+            self.passes.sky.generation(),
+            self.passes.prefilter.generation(),
+        ) != self.sky_generations
+        {
             self.rebuild_environment();
         }
         any

@@ -98,8 +98,7 @@ impl SceneGpu {
         let shaders_saved = changed
             .iter()
             .any(|p| p.extension().is_some_and(|e| e == "wgsl"));
-        let scene_name = scene_path.file_name();
-        let scene_saved = changed.iter().any(|p| p.file_name() == scene_name);
+        let scene_saved = crate::reload::any_is(&changed, &crate::reload::file_key(scene_path));
         if shaders_saved || scene_saved {
             shared.generation += 1;
         }

@@ -25,8 +25,9 @@ use crate::deck::widgets::scene::{
     DISTANCE_RANGE_M, PITCH_RANGE_DEG, SceneSpec, SceneToggles, SceneView, TARGET_RANGE_M,
     TIME_RANGE_S, YAW_RANGE_DEG,
 };
+use crate::reload::{LiveFile, Reloaded};
 use crate::render::{DebugView, RenderSettings};
-use crate::scene::SceneSim;
+use crate::scene::{Scene, SceneSim};
 
 /// While playing in the window, at most this many scene frames per second: on a software
 /// adapter a frame of the full school costs a large part of a second.
@@ -51,7 +52,10 @@ pub struct SceneWidget {
     pub spec: SceneSpec,
     initial: SceneSpec,
     scene_path: Result<PathBuf, String>,
-    sim: Result<SceneSim, String>,
+    /// the scene file in the app's one last-good holder (`None` when its path was refused)
+    scene_file: Option<LiveFile<Scene>>,
+    /// the simulation of the scene file's last good version
+    sim: Option<SceneSim>,
     output: Option<Output>,
     drawn: Option<FrameKey>,
     render_error: Option<String>,
@@ -60,8 +64,9 @@ pub struct SceneWidget {
     frames_rendered: u64,
     /// the generation of the scene's files the simulation was loaded at
     files_generation: u64,
-    /// a saved scene file or shader that did not load: the last good one is still shown
-    reload_problems: Vec<String>,
+    /// the renderer's shader problems (`file:line:col: message`) as of the last save, read
+    /// from its techniques' holders; the last good pipelines keep drawing
+    shader_errors: Vec<String>,
 }
 
 fn debug_view(view: SceneView) -> DebugView {
@@ -127,15 +132,15 @@ impl SceneWidget {
         };
         let scene_path = crate::bundled::scene_file(resolved, &spec.scene).map(|f| f.path);
         let started = web_time::Instant::now();
-        let sim = scene_path.clone().and_then(|p| {
-            crate::scene::load_scene(&p)
-                .map(SceneSim::new)
-                .map_err(|d| d.to_string())
-        });
+        let scene_file = (scene_path.as_ref().ok())
+            .map(|p| LiveFile::open(p.clone(), crate::scene::parse_scene));
+        let sim = (scene_file.as_ref())
+            .and_then(LiveFile::value)
+            .map(|scene| SceneSim::new(scene.clone()));
         tracing::debug!("scene widget: scene loaded in {:?}", started.elapsed());
         let mut spec = spec;
         // The camera's unset values are the scene file's, so the presenter's sliders start there.
-        if let Ok(sim) = &sim {
+        if let Some(sim) = &sim {
             let c = &sim.scene.camera;
             let cam = &mut spec.camera;
             cam.yaw_deg.get_or_insert(c.yaw_deg as f64);
@@ -146,6 +151,7 @@ impl SceneWidget {
             initial: spec.clone(),
             spec,
             scene_path,
+            scene_file,
             sim,
             output: None,
             drawn: None,
@@ -153,30 +159,32 @@ impl SceneWidget {
             last_time: None,
             frames_rendered: 0,
             files_generation: 0,
-            reload_problems: Vec::new(),
+            shader_errors: Vec::new(),
         }
     }
 
-    /// After a save of the scene file or a shader: the scene is read again (the last good one
-    /// stays when it does not parse) and the renderer's shader errors are kept for the presenter.
+    /// After a save of the scene file or a shader: the scene file is re-read through its
+    /// holder (the last good scene stays when it does not parse) and the renderer's shader
+    /// errors are kept for the presenter.
     fn reload_files(&mut self, gpu: &SceneGpu) {
-        let Ok(path) = &self.scene_path else { return };
+        let (Ok(path), Some(file)) = (&self.scene_path, &mut self.scene_file) else {
+            return;
+        };
         let generation = gpu.poll_files(path);
         if generation == self.files_generation {
             return;
         }
         self.files_generation = generation;
-        self.reload_problems = gpu.shader_errors(path);
-        match crate::scene::load_scene(path) {
-            Ok(scene) => {
-                let unchanged = self.sim.as_ref().is_ok_and(|s| s.scene == scene);
-                if !unchanged {
-                    // a new simulation; `prepare` puts it at the deck's time and camera
-                    self.sim = Ok(SceneSim::new(scene));
-                    self.last_time = None;
-                }
+        self.shader_errors = gpu.shader_errors(path);
+        if file.reload() == Reloaded::Updated
+            && let Some(scene) = file.value()
+        {
+            let unchanged = self.sim.as_ref().is_some_and(|s| s.scene == *scene);
+            if !unchanged {
+                // a new simulation; `prepare` puts it at the deck's time and camera
+                self.sim = Some(SceneSim::new(scene.clone()));
+                self.last_time = None;
             }
-            Err(d) => self.reload_problems.push(d.to_string()),
         }
     }
 
@@ -187,13 +195,13 @@ impl SceneWidget {
 
     /// The simulation the widget shows (after the last `ui`).
     pub fn sim(&self) -> Option<&SceneSim> {
-        self.sim.as_ref().ok()
+        self.sim.as_ref()
     }
 
     /// Puts the simulation where the spec says: camera, and (unless playing in the window)
     /// the time `time_s`. Returns the simulation time shown.
     fn prepare(&mut self, ui: &egui::Ui, gpu: &SceneGpu) -> Option<f64> {
-        let sim = self.sim.as_mut().ok()?;
+        let sim = self.sim.as_mut()?;
         let cam = &self.spec.camera;
         if let Some(y) = cam.yaw_deg {
             sim.camera.yaw_deg = y as f32;
@@ -243,7 +251,7 @@ impl SceneWidget {
             return;
         };
         let settings = render_settings(&self.spec, gpu.render_scale);
-        let (Ok(sim), Ok(path), Some(out)) = (&self.sim, &self.scene_path, &self.output) else {
+        let (Some(sim), Ok(path), Some(out)) = (&self.sim, &self.scene_path, &self.output) else {
             return;
         };
         let key = FrameKey {
@@ -276,9 +284,19 @@ impl SceneWidget {
         self.frames_rendered += 1;
     }
 
+    /// Why there is no picture at all: the path refused, the scene never loaded, or the
+    /// renderer failed.
     fn problem(&self) -> Option<String> {
-        let load = self.scene_path.as_ref().err().or(self.sim.as_ref().err());
-        load.cloned().or_else(|| self.render_error.clone())
+        if let Err(why) = &self.scene_path {
+            return Some(why.clone());
+        }
+        if self.sim.is_none() {
+            let why = self.scene_file.as_ref().and_then(LiveFile::error);
+            return Some(
+                why.map_or_else(|| "the scene did not load".to_owned(), |d| d.to_string()),
+            );
+        }
+        self.render_error.clone()
     }
 }
 
@@ -379,7 +397,13 @@ impl SlideWidget for SceneWidget {
 
     fn problems(&self) -> Vec<String> {
         let mut out: Vec<String> = self.problem().into_iter().collect();
-        out.extend(self.reload_problems.iter().cloned());
+        out.extend(self.shader_errors.iter().cloned());
+        // a broken save while the last good scene is shown
+        if self.sim.is_some()
+            && let Some(d) = self.scene_file.as_ref().and_then(LiveFile::error)
+        {
+            out.push(d.to_string());
+        }
         out
     }
 }
