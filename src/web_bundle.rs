@@ -1,22 +1,25 @@
 //! The web page's bundle: the deck and every file it names, its formulas typeset at export, and
-//! the fonts the slides use, as one JSON document that `lectern export --web` writes (inside a
+//! the fonts the slides use, which `lectern export --web` writes (gzipped, as base64 inside a
 //! classic script, `bundle.js`, since `file://` pages may not `fetch`) and the player reads at
 //! start. No egui, no Typst: both sides share this one definition of the format.
 //!
-//! Bytes travel as base64; a formula's pixels as PNG (straight RGBA as egui uploads it, the
-//! premultiplication undone and redone around the codec).
+//! Layout (`lectern-web-bundle/2`): one line of JSON (the [`WebBundle`] without its bytes), a
+//! newline, then every byte string back to back, raw, each stored once however many names it
+//! has (a font that is both a slide face and a fallback travels once). Raw bytes rather than
+//! base64 inside the JSON let the page's gzip shrink the fonts as fonts. A formula's pixels are
+//! a PNG (straight RGBA as egui uploads it, the premultiplication undone and redone around the
+//! codec).
 
 use std::path::{Path, PathBuf};
 
-use base64::Engine as _;
 use serde::{Deserialize, Serialize};
 
 use crate::math::{MathError, MathStyle, MathSyntax, RenderedFormula};
 
 /// What a page's bundle says it is: a player refuses any other.
-pub const FORMAT: &str = "lectern-web-bundle/1";
+pub const FORMAT: &str = "lectern-web-bundle/2";
 
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct WebBundle {
     pub format: String,
     /// The deck's path inside the bundle (relative, `/`-separated), e.g. `slides/lecture.ron`.
@@ -26,12 +29,17 @@ pub struct WebBundle {
     pub formulas: Vec<BundledFormula>,
     /// The slide and fallback faces, by the name egui knows them.
     pub fonts: Vec<BundledFile>,
+    /// The length of each byte string after the JSON line, in order.
+    blob_lengths: Vec<usize>,
+    #[serde(skip)]
+    blobs: Vec<Vec<u8>>,
 }
 
+/// A name and the byte string it stands for.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct BundledFile {
     pub path: String,
-    pub base64: String,
+    pub blob: usize,
 }
 
 /// One formula as the export's Typst typeset it, at twice its layout size.
@@ -50,9 +58,9 @@ pub struct BundledFormula {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum FormulaResult {
-    /// PNG (straight alpha) as base64, and the baseline in pixels from the top.
+    /// The byte string holding the PNG (straight alpha), and the baseline in pixels from the top.
     Png {
-        png_base64: String,
+        png_blob: usize,
         baseline: u32,
     },
     Error {
@@ -61,33 +69,54 @@ pub enum FormulaResult {
     },
 }
 
-impl BundledFile {
-    pub fn new(path: impl Into<String>, bytes: &[u8]) -> Self {
+impl WebBundle {
+    pub fn new(deck: impl Into<String>) -> Self {
         Self {
-            path: path.into(),
-            base64: base64::engine::general_purpose::STANDARD.encode(bytes),
+            format: FORMAT.into(),
+            deck: deck.into(),
+            ..Self::default()
         }
     }
 
-    pub fn bytes(&self) -> Result<Vec<u8>, String> {
-        base64::engine::general_purpose::STANDARD
-            .decode(&self.base64)
-            .map_err(|e| format!("{}: damaged in the bundle ({e})", self.path))
+    /// Stores `bytes` once: the index of an equal byte string already in, or of a new one.
+    pub fn add_blob(&mut self, bytes: &[u8]) -> usize {
+        if let Some(i) = self.blobs.iter().position(|b| b.as_slice() == bytes) {
+            return i;
+        }
+        self.blobs.push(bytes.to_vec());
+        self.blob_lengths.push(bytes.len());
+        self.blobs.len() - 1
     }
-}
 
-impl BundledFormula {
-    pub fn new(
+    pub fn add_file(&mut self, path: impl Into<String>, bytes: &[u8]) {
+        let blob = self.add_blob(bytes);
+        self.files.push(BundledFile {
+            path: path.into(),
+            blob,
+        });
+    }
+
+    pub fn add_font(&mut self, name: impl Into<String>, bytes: &[u8]) {
+        let blob = self.add_blob(bytes);
+        self.fonts.push(BundledFile {
+            path: name.into(),
+            blob,
+        });
+    }
+
+    /// Typeset results as the bundle keeps them (a formula's pixels as a PNG byte string).
+    pub fn add_formula(
+        &mut self,
         src: &str,
         syntax: MathSyntax,
         style: MathStyle,
         rgba: [u8; 4],
         em_px: f32,
-        result: &Result<RenderedFormula, MathError>,
-    ) -> Result<Self, String> {
-        let result = match result {
+        typeset: &Result<RenderedFormula, MathError>,
+    ) -> Result<(), String> {
+        let result = match typeset {
             Ok(f) => FormulaResult::Png {
-                png_base64: base64::engine::general_purpose::STANDARD.encode(png_of(f)?),
+                png_blob: self.add_blob(&png_of(f)?),
                 baseline: f.baseline,
             },
             Err(e) => FormulaResult::Error {
@@ -95,16 +124,119 @@ impl BundledFormula {
                 col: e.col,
             },
         };
-        Ok(Self {
+        self.formulas.push(BundledFormula {
             src: src.to_owned(),
             latex: syntax == MathSyntax::Latex,
             inline: style == MathStyle::Inline,
             rgba,
             em_px,
             result,
+        });
+        Ok(())
+    }
+
+    /// The byte strings stored, one per distinct content.
+    pub fn blob_count(&self) -> usize {
+        self.blobs.len()
+    }
+
+    pub fn blob(&self, index: usize) -> Result<&[u8], String> {
+        self.blobs.get(index).map(Vec::as_slice).ok_or_else(|| {
+            format!("the bundle is damaged: it names byte string {index}, which it lacks")
         })
     }
 
+    pub fn bytes_of(&self, file: &BundledFile) -> Result<&[u8], String> {
+        self.blob(file.blob)
+            .map_err(|e| format!("{}: {e}", file.path))
+    }
+
+    /// The bundle's layout (see the module's doc), before the page's gzip.
+    pub fn to_bytes(&self) -> Vec<u8> {
+        let mut out = serde_json::to_vec(self).unwrap_or_default();
+        out.push(b'\n');
+        for b in &self.blobs {
+            out.extend_from_slice(b);
+        }
+        out
+    }
+
+    /// Reads a bundle; a damaged one is an error saying where.
+    pub fn from_bytes(bytes: &[u8]) -> Result<Self, String> {
+        let damaged = "the bundle is damaged";
+        let newline = bytes
+            .iter()
+            .position(|&b| b == b'\n')
+            .ok_or_else(|| format!("{damaged}: it has no header line"))?;
+        let mut b: WebBundle = serde_json::from_slice(&bytes[..newline])
+            .map_err(|e| format!("{damaged} at line {}, column {}: {e}", e.line(), e.column()))?;
+        if b.format != FORMAT {
+            return Err(format!(
+                "the bundle is {:?}, this player reads {FORMAT:?}: export the page again",
+                b.format
+            ));
+        }
+        let mut rest = &bytes[newline + 1..];
+        for &len in &b.blob_lengths {
+            if len > rest.len() {
+                return Err(format!("{damaged}: its bytes end early"));
+            }
+            let (blob, tail) = rest.split_at(len);
+            b.blobs.push(blob.to_vec());
+            rest = tail;
+        }
+        if !rest.is_empty() {
+            return Err(format!("{damaged}: {} bytes too many", rest.len()));
+        }
+        Ok(b)
+    }
+
+    /// The bundle's files as a [`crate::project_files::Bundle`].
+    pub fn project_files(&self) -> Result<crate::project_files::Bundle, String> {
+        let mut out = crate::project_files::Bundle::new();
+        for f in &self.files {
+            out.insert(Path::new(&f.path), self.bytes_of(f)?.to_vec());
+        }
+        Ok(out)
+    }
+
+    pub fn deck_path(&self) -> PathBuf {
+        PathBuf::from(&self.deck)
+    }
+
+    /// A formula's pixels (or its error) as the typesetter returned them.
+    pub fn rendered(
+        &self,
+        f: &BundledFormula,
+    ) -> Result<Result<RenderedFormula, MathError>, String> {
+        match &f.result {
+            FormulaResult::Error { message, col } => Ok(Err(MathError {
+                message: message.clone(),
+                col: *col,
+            })),
+            FormulaResult::Png { png_blob, baseline } => {
+                let damaged = |e: &dyn std::fmt::Display| {
+                    format!("formula `{}`: damaged in the bundle ({e})", f.src)
+                };
+                let png = self.blob(*png_blob).map_err(|e| damaged(&e))?;
+                let img = image::load_from_memory_with_format(png, image::ImageFormat::Png)
+                    .map_err(|e| damaged(&e))?
+                    .into_rgba8();
+                let (width, height) = img.dimensions();
+                let mut rgba = img.into_raw();
+                premultiply(&mut rgba);
+                Ok(Ok(RenderedFormula {
+                    width,
+                    height,
+                    baseline: *baseline,
+                    rgba_premultiplied: rgba,
+                }))
+            }
+        }
+    }
+}
+
+impl BundledFormula {
     pub fn syntax(&self) -> MathSyntax {
         if self.latex {
             MathSyntax::Latex
@@ -118,36 +250,6 @@ impl BundledFormula {
             MathStyle::Inline
         } else {
             MathStyle::Display
-        }
-    }
-
-    /// The formula's pixels (or its error) as the typesetter returned them.
-    pub fn rendered(&self) -> Result<Result<RenderedFormula, MathError>, String> {
-        match &self.result {
-            FormulaResult::Error { message, col } => Ok(Err(MathError {
-                message: message.clone(),
-                col: *col,
-            })),
-            FormulaResult::Png {
-                png_base64,
-                baseline,
-            } => {
-                let png = base64::engine::general_purpose::STANDARD
-                    .decode(png_base64)
-                    .map_err(|e| format!("formula `{}`: damaged in the bundle ({e})", self.src))?;
-                let img = image::load_from_memory_with_format(&png, image::ImageFormat::Png)
-                    .map_err(|e| format!("formula `{}`: damaged in the bundle ({e})", self.src))?
-                    .into_rgba8();
-                let (width, height) = img.dimensions();
-                let mut rgba = img.into_raw();
-                premultiply(&mut rgba);
-                Ok(Ok(RenderedFormula {
-                    width,
-                    height,
-                    baseline: *baseline,
-                    rgba_premultiplied: rgba,
-                }))
-            }
         }
     }
 }
@@ -182,43 +284,6 @@ fn premultiply(rgba: &mut [u8]) {
     }
 }
 
-impl WebBundle {
-    pub fn to_json(&self) -> String {
-        serde_json::to_string(self).unwrap_or_default()
-    }
-
-    /// Reads a bundle; a damaged one is an error with its line and column.
-    pub fn from_json(text: &str) -> Result<Self, String> {
-        let b: WebBundle = serde_json::from_str(text).map_err(|e| {
-            format!(
-                "the bundle is damaged at line {}, column {}: {e}",
-                e.line(),
-                e.column()
-            )
-        })?;
-        if b.format != FORMAT {
-            return Err(format!(
-                "the bundle is {:?}, this player reads {FORMAT:?}: export the page again",
-                b.format
-            ));
-        }
-        Ok(b)
-    }
-
-    /// The bundle's files as a [`crate::project_files::Bundle`].
-    pub fn project_files(&self) -> Result<crate::project_files::Bundle, String> {
-        let mut out = crate::project_files::Bundle::new();
-        for f in &self.files {
-            out.insert(Path::new(&f.path), f.bytes()?);
-        }
-        Ok(out)
-    }
-
-    pub fn deck_path(&self) -> PathBuf {
-        PathBuf::from(&self.deck)
-    }
-}
-
 /// `path` relative to `root`, `/`-separated, as the bundle stores it; `None` outside `root`.
 pub fn bundle_path(root: &Path, path: &Path) -> Option<String> {
     let rel = path.strip_prefix(root).ok()?;
@@ -234,7 +299,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn a_formula_comes_back_as_typeset_and_a_damaged_bundle_says_where() {
+    fn a_formula_comes_back_as_typeset_bytes_are_stored_once_and_a_damaged_bundle_says_so() {
         // a half-transparent edge pixel: premultiplied values survive PNG's straight alpha
         let f = RenderedFormula {
             width: 2,
@@ -242,7 +307,12 @@ mod tests {
             baseline: 1,
             rgba_premultiplied: vec![10, 20, 30, 255, 50, 40, 0, 128],
         };
-        let bf = BundledFormula::new(
+        let mut b = WebBundle::new("slides/a.ron");
+        b.add_file("slides/a.ron", b"(title: \"t\")");
+        let face = vec![7u8; 1000];
+        b.add_font("Face-Regular", &face);
+        b.add_font("lectern-Face", &face);
+        b.add_formula(
             "x^2",
             MathSyntax::Typst,
             MathStyle::Inline,
@@ -251,17 +321,14 @@ mod tests {
             &Ok(f.clone()),
         )
         .unwrap();
-        let b = WebBundle {
-            format: FORMAT.into(),
-            deck: "slides/a.ron".into(),
-            files: vec![BundledFile::new("slides/a.ron", b"(title: \"t\")")],
-            formulas: vec![bf],
-            fonts: vec![],
-        };
-        let json = b.to_json();
-        let back = WebBundle::from_json(&json).unwrap();
+        // the deck, one face (named twice), one PNG
+        assert_eq!(b.blob_count(), 3);
+        let bytes = b.to_bytes();
+        assert!(bytes.len() < 2 * face.len(), "{} bytes", bytes.len());
+        let back = WebBundle::from_bytes(&bytes).unwrap();
         assert_eq!(back, b);
-        let got = back.formulas[0].rendered().unwrap().unwrap();
+        assert_eq!(back.bytes_of(&back.fonts[1]).unwrap(), &face[..]);
+        let got = back.rendered(&back.formulas[0]).unwrap().unwrap();
         assert_eq!((got.width, got.height, got.baseline), (2, 1, 1));
         for (g, w) in got.rgba_premultiplied.iter().zip(&f.rgba_premultiplied) {
             assert!(g.abs_diff(*w) <= 1, "{got:?} vs {f:?}");
@@ -274,10 +341,19 @@ mod tests {
             b"(title: \"t\")"
         );
 
-        let cut = &json[..json.len() / 2];
-        let e = WebBundle::from_json(cut).unwrap_err();
+        let e = WebBundle::from_bytes(&bytes[..bytes.len() - 10]).unwrap_err();
+        assert!(e.contains("damaged") && e.contains("end early"), "{e}");
+        let header_end = bytes.iter().position(|&c| c == b'\n').unwrap();
+        let e = WebBundle::from_bytes(&bytes[..header_end / 2]).unwrap_err();
+        assert!(e.contains("damaged"), "{e}");
+        let mut cut_header = bytes[..header_end / 2].to_vec();
+        cut_header.extend_from_slice(&bytes[header_end..]);
+        let e = WebBundle::from_bytes(&cut_header).unwrap_err();
         assert!(e.contains("line 1, column"), "{e}");
-        let other = json.replace(FORMAT, "lectern-web-bundle/0");
-        assert!(WebBundle::from_json(&other).unwrap_err().contains("export"));
+        let other = String::from_utf8_lossy(&bytes[..header_end])
+            .replace(FORMAT, "lectern-web-bundle/1")
+            .into_bytes();
+        let e = WebBundle::from_bytes(&[&other[..], &bytes[header_end..]].concat()).unwrap_err();
+        assert!(e.contains("export"), "{e}");
     }
 }

@@ -28,16 +28,26 @@ fn export_web(dir: &Path, deck: &Path, extra: &[&str]) -> std::process::Output {
         .unwrap()
 }
 
-/// The bundle as the player reads it: bundle.js is `window.LECTERN_BUNDLE = "<json>";`.
-fn read_bundle(page: &Path) -> WebBundle {
-    let js = std::fs::read_to_string(page.join("bundle.js")).unwrap();
-    let literal = js
+/// `window.NAME = "<base64 of gzip>";` opened as the page opens it.
+fn gunzip_script(file: &Path, name: &str) -> Vec<u8> {
+    let js = std::fs::read_to_string(file).unwrap();
+    let b64 = js
         .trim()
-        .strip_prefix("window.LECTERN_BUNDLE = ")
-        .and_then(|s| s.strip_suffix(';'))
+        .strip_prefix(&format!("window.{name} = \""))
+        .and_then(|s| s.strip_suffix("\";"))
         .unwrap();
-    let json: String = serde_json::from_str(literal).unwrap();
-    WebBundle::from_json(&json).unwrap()
+    use base64::Engine as _;
+    let gz = base64::engine::general_purpose::STANDARD
+        .decode(b64)
+        .unwrap();
+    let mut out = Vec::new();
+    std::io::Read::read_to_end(&mut flate2::read::GzDecoder::new(&gz[..]), &mut out).unwrap();
+    out
+}
+
+/// The bundle as the player reads it: bundle.js is `window.LECTERN_BUNDLE_GZ = "<base64>";`.
+fn read_bundle(page: &Path) -> WebBundle {
+    WebBundle::from_bytes(&gunzip_script(&page.join("bundle.js"), "LECTERN_BUNDLE_GZ")).unwrap()
 }
 
 #[test]
@@ -74,18 +84,7 @@ fn the_bundle_holds_the_deck_its_files_formulas_and_fonts() {
     }
     assert!(!html.contains("type=\"module\"") && html.contains("Talk &lt;1&gt;"));
     // the player's wasm, gzipped, as base64
-    let player = std::fs::read_to_string(page.join("player.js")).unwrap();
-    let b64 = player
-        .trim()
-        .strip_prefix("window.LECTERN_WASM_GZ = \"")
-        .and_then(|s| s.strip_suffix("\";"))
-        .unwrap();
-    use base64::Engine as _;
-    let gz = base64::engine::general_purpose::STANDARD
-        .decode(b64)
-        .unwrap();
-    let mut wasm = Vec::new();
-    std::io::Read::read_to_end(&mut flate2::read::GzDecoder::new(&gz[..]), &mut wasm).unwrap();
+    let wasm = gunzip_script(&page.join("player.js"), "LECTERN_WASM_GZ");
     assert_eq!(wasm, b"\0asm\x01\0\0\0");
 
     let b = read_bundle(&page);
@@ -98,7 +97,10 @@ fn the_bundle_holds_the_deck_its_files_formulas_and_fonts() {
         .iter()
         .find(|f| f.path == "slides/talk.ron")
         .unwrap();
-    assert_eq!(deck_bytes.bytes().unwrap(), std::fs::read(&deck).unwrap());
+    assert_eq!(
+        b.bytes_of(deck_bytes).unwrap(),
+        std::fs::read(&deck).unwrap()
+    );
     // both formulas, typeset (not errors), at twice a 1280-pixel slide's size
     let srcs: Vec<&str> = b.formulas.iter().map(|f| f.src.as_str()).collect();
     assert!(
@@ -106,13 +108,36 @@ fn the_bundle_holds_the_deck_its_files_formulas_and_fonts() {
         "{srcs:?}"
     );
     for f in &b.formulas {
-        let img = f.rendered().unwrap().unwrap();
+        let img = b.rendered(f).unwrap().unwrap();
         assert!(img.width > 8 && img.height > 8, "{}: {img:?}", f.src);
         assert!(f.em_px > 40.0, "{}: {} px per em", f.src, f.em_px);
     }
     let fonts: Vec<&str> = b.fonts.iter().map(|f| f.path.as_str()).collect();
     assert!(fonts.contains(&"LibertinusSerif-Regular"), "{fonts:?}");
     assert!(fonts.iter().any(|f| f.starts_with("lectern-")), "{fonts:?}");
+    // each face once: Libertinus Serif Regular is a slide face and a fallback, one byte string
+    let blob_of = |name: &str| b.fonts.iter().find(|f| f.path == name).unwrap().blob;
+    assert_eq!(
+        blob_of("LibertinusSerif-Regular"),
+        blob_of("lectern-Libertinus Serif")
+    );
+    // the maths fallback's family is a slide face's (NewCMMath-Book covers it): left out
+    assert!(
+        !fonts.contains(&"lectern-New Computer Modern Math") && fonts.contains(&"NewCMMath-Book"),
+        "{fonts:?}"
+    );
+    let mut blobs: Vec<usize> = b.fonts.iter().map(|f| f.blob).collect();
+    blobs.sort();
+    blobs.dedup();
+    let sizes: Vec<usize> = blobs.iter().map(|&i| b.blob(i).unwrap().len()).collect();
+    let mut contents: Vec<&[u8]> = blobs.iter().map(|&i| b.blob(i).unwrap()).collect();
+    contents.sort();
+    contents.dedup();
+    assert_eq!(
+        contents.len(),
+        blobs.len(),
+        "a face stored twice: {sizes:?}"
+    );
 }
 
 #[test]
@@ -130,7 +155,7 @@ fn a_broken_formula_fails_export_web_naming_it_unless_keep_going() {
     assert!(err.contains("slide 1") && err.contains("nosuchfn"), "{err}");
     // the page is written all the same, its formula's error inside
     let b = read_bundle(&dir.path().join("page"));
-    assert!(b.formulas.iter().any(|f| f.rendered().unwrap().is_err()));
+    assert!(b.formulas.iter().any(|f| b.rendered(f).unwrap().is_err()));
     let o = export_web(dir.path(), &deck, &["--keep-going"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }

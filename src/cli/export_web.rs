@@ -2,9 +2,9 @@
 //! slides with every plot live (docs/web.md). DIR gets `index.html` and three classic scripts
 //! (a page opened from `file://` may neither `fetch` nor import modules): `lectern.js`
 //! (wasm-bindgen's `no-modules` glue), `player.js` (the player's wasm, gzipped, as base64) and
-//! `bundle.js` (the [`WebBundle`]: the deck and every file its loading and drawing read,
-//! collected with [`project_files::Recording`], every formula the slides asked for typeset by
-//! the app's own Typst at twice its layout size, and the fonts the slides use).
+//! `bundle.js` (the [`WebBundle`], gzipped, as base64: the deck and every file its loading and
+//! drawing read, collected with [`project_files::Recording`], every formula the slides asked
+//! for typeset by the app's own Typst at twice its layout size, and the fonts the slides use).
 //!
 //! The player is `target/web-player/`, made by `scripts/build-player`; export runs that script
 //! (with a progress line) when the player is missing or older than the sources.
@@ -19,7 +19,7 @@ use crate::app::{LecternApp, OffscreenRenderer, SlideOptions};
 use crate::deck::DeckSession;
 use crate::math::{MathStyle, MathSyntax, Request};
 use crate::project_files::{self, Recording};
-use crate::web_bundle::{BundledFile, BundledFormula, FORMAT, WebBundle, bundle_path};
+use crate::web_bundle::{WebBundle, bundle_path};
 
 /// The slide size the formulas are laid out at for the page, in pixels (they are typeset at
 /// twice that, so they stay sharp on a high-DPI screen; smaller windows downsample).
@@ -68,21 +68,15 @@ pub fn export_web(deck_path: &Path, out: &Path, player_dir: &Path) -> anyhow::Re
         }
         let _ = crate::app::plot_data::slide_data(slide, &mut state);
     }
-    let formulas = typeset_formulas(crate::math::pool::take_recorded())?;
-    let files = bundled_files(&root, &recording.files_read())?;
     let deck_in_bundle = bundle_path(&root, &deck_real)
         .ok_or_else(|| anyhow::anyhow!("{} is outside its project folder", deck_real.display()))?;
-    let fonts = (crate::math::slide_fonts().into_iter())
-        .chain(crate::math::fallback_fonts())
-        .map(|(name, bytes)| BundledFile::new(name, bytes))
-        .collect();
-    let bundle = WebBundle {
-        format: FORMAT.into(),
-        deck: deck_in_bundle,
-        files,
-        formulas,
-        fonts,
-    };
+    let mut bundle = WebBundle::new(deck_in_bundle);
+    typeset_formulas(&mut bundle, crate::math::pool::take_recorded())?;
+    bundle_files(&mut bundle, &root, &recording.files_read())?;
+    // a face that is both a slide face and a fallback is stored once (`add_blob`)
+    for (name, bytes) in crate::math::web_fonts() {
+        bundle.add_font(name, bytes);
+    }
     let written = write_page(out, &deck.title, &bundle, player_dir)?;
     Ok(WebExport {
         files: written,
@@ -91,7 +85,7 @@ pub fn export_web(deck_path: &Path, out: &Path, player_dir: &Path) -> anyhow::Re
 }
 
 /// Each formula asked for, once (at the largest size asked), typeset at twice that size.
-fn typeset_formulas(asked: Vec<Request>) -> anyhow::Result<Vec<BundledFormula>> {
+fn typeset_formulas(bundle: &mut WebBundle, asked: Vec<Request>) -> anyhow::Result<()> {
     type Key = (String, MathSyntax, MathStyle, [u8; 4]);
     let mut largest: HashMap<Key, f32> = HashMap::new();
     for r in asked {
@@ -102,25 +96,24 @@ fn typeset_formulas(asked: Vec<Request>) -> anyhow::Result<Vec<BundledFormula>> 
     }
     let mut keys: Vec<(Key, f32)> = largest.into_iter().collect();
     keys.sort_by(|a, b| a.0.0.cmp(&b.0.0).then(a.0.3.cmp(&b.0.3)));
-    keys.into_iter()
-        .map(|((src, syntax, style, rgba), size_px)| {
-            let em_px = 2.0 * size_px;
-            let result = crate::math::pool().typeset(Request {
-                src: src.clone(),
-                syntax,
-                style,
-                size_px: em_px,
-                rgba,
-            });
-            BundledFormula::new(&src, syntax, style, rgba, em_px, &result)
-                .map_err(anyhow::Error::msg)
-        })
-        .collect()
+    for ((src, syntax, style, rgba), size_px) in keys {
+        let em_px = 2.0 * size_px;
+        let result = crate::math::pool().typeset(Request {
+            src: src.clone(),
+            syntax,
+            style,
+            size_px: em_px,
+            rgba,
+        });
+        bundle
+            .add_formula(&src, syntax, style, rgba, em_px, &result)
+            .map_err(anyhow::Error::msg)?;
+    }
+    Ok(())
 }
 
 /// The files read, by their path under `root`.
-fn bundled_files(root: &Path, read: &[PathBuf]) -> anyhow::Result<Vec<BundledFile>> {
-    let mut out = Vec::new();
+fn bundle_files(bundle: &mut WebBundle, root: &Path, read: &[PathBuf]) -> anyhow::Result<()> {
     for path in read {
         let Some(rel) = bundle_path(root, path) else {
             eprintln!(
@@ -132,9 +125,9 @@ fn bundled_files(root: &Path, read: &[PathBuf]) -> anyhow::Result<Vec<BundledFil
         };
         let bytes =
             std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
-        out.push(BundledFile::new(rel, &bytes));
+        bundle.add_file(rel, &bytes);
     }
-    Ok(out)
+    Ok(())
 }
 
 fn write_page(
@@ -152,16 +145,15 @@ fn write_page(
     let glue = read("lectern.js")?;
     let wasm = read("lectern_bg.wasm")?;
     // gzipped: a third of the size, opened by the browser's own DecompressionStream
-    let mut gz = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::best());
-    std::io::Write::write_all(&mut gz, &wasm)?;
-    let wasm_js = format!(
-        "window.LECTERN_WASM_GZ = \"{}\";\n",
-        base64::engine::general_purpose::STANDARD.encode(gz.finish()?)
-    );
-    // the bundle's JSON as one JavaScript string (JSON's string syntax is JavaScript's)
+    let gzip_base64 = |bytes: &[u8]| -> anyhow::Result<String> {
+        let mut gz = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::best());
+        std::io::Write::write_all(&mut gz, bytes)?;
+        Ok(base64::engine::general_purpose::STANDARD.encode(gz.finish()?))
+    };
+    let wasm_js = format!("window.LECTERN_WASM_GZ = \"{}\";\n", gzip_base64(&wasm)?);
     let bundle_js = format!(
-        "window.LECTERN_BUNDLE = {};\n",
-        serde_json::to_string(&bundle.to_json())?
+        "window.LECTERN_BUNDLE_GZ = \"{}\";\n",
+        gzip_base64(&bundle.to_bytes())?
     );
     let files = [
         ("index.html", index_html(title).into_bytes()),
@@ -232,16 +224,33 @@ const INDEX_HTML: &str = r#"<!doctype html>
       "with `lectern export DECK --web DIR`");
     return;
   }
+  if (typeof window.LECTERN_BUNDLE_GZ !== "string") {
+    fail("the slides' bundle (bundle.js) is missing or damaged: export the page again " +
+      "with `lectern export DECK --web DIR`");
+    return;
+  }
   if (typeof DecompressionStream === "undefined") {
     fail("this browser is too old for the page (it lacks DecompressionStream)");
     return;
   }
-  var text = atob(window.LECTERN_WASM_GZ), gz = new Uint8Array(text.length);
-  for (var i = 0; i < text.length; i++) gz[i] = text.charCodeAt(i);
-  var wasm = new Blob([gz]).stream().pipeThrough(new DecompressionStream("gzip"));
-  new Response(wasm).arrayBuffer()
-    .then(function (bytes) { return wasm_bindgen({ module_or_path: bytes }); })
-    .catch(function (e) { fail(String(e)); });
+  // base64 of gzip -> bytes, with the browser's own DecompressionStream
+  function gunzip(base64) {
+    var text = atob(base64), gz = new Uint8Array(text.length);
+    for (var i = 0; i < text.length; i++) gz[i] = text.charCodeAt(i);
+    var stream = new Blob([gz]).stream().pipeThrough(new DecompressionStream("gzip"));
+    return new Response(stream).arrayBuffer();
+  }
+  // (the browser's own words for a broken gzip stream, e.g. "Failed to fetch", mislead)
+  var bundle = gunzip(window.LECTERN_BUNDLE_GZ).catch(function () {
+    throw new Error("the slides' bundle (bundle.js) is damaged (it does not unpack): export " +
+      "the page again with `lectern export DECK --web DIR`");
+  });
+  Promise.all([gunzip(window.LECTERN_WASM_GZ), bundle])
+    .then(function (opened) {
+      window.LECTERN_BUNDLE = new Uint8Array(opened[1]);
+      return wasm_bindgen({ module_or_path: opened[0] });
+    })
+    .catch(function (e) { fail(e && e.message ? e.message : String(e)); });
 })();
 </script>
 </body>

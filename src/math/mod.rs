@@ -31,6 +31,8 @@ pub mod worker;
 pub use cache::{Formula, MathCache, MathView, math_ui, never_wait};
 #[cfg(target_arch = "wasm32")]
 pub use fonts::set_bundled_fonts;
+#[cfg(not(target_arch = "wasm32"))]
+pub use fonts::web_fonts;
 pub use fonts::{add_fallback_fonts, fallback_fonts, install_egui_fallback_fonts, slide_fonts};
 pub use formula::{
     INLINE_MARGIN_Y_EM, MathError, MathStyle, MathSyntax, RenderedFormula, Request,

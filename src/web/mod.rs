@@ -33,8 +33,7 @@ pub fn start() {
 
 async fn run() -> Result<(), String> {
     let window = web_sys::window().ok_or("no browser window")?;
-    let bundle = page::bundle_text(&window)?;
-    let bundle = WebBundle::from_json(&bundle)?;
+    let bundle = WebBundle::from_bytes(&page::bundle_bytes(&window)?)?;
     install(&bundle)?;
     let mut session = DeckSession::open(bundle.deck_path()).map_err(|d| d.to_string())?;
     if let Some(n) = hook::fragment_slide(&window) {
@@ -87,20 +86,26 @@ fn install(bundle: &WebBundle) -> Result<(), String> {
                 style: f.style(),
                 rgba: f.rgba,
                 em_px: f.em_px,
-                result: f.rendered()?,
+                result: bundle.rendered(f)?,
             })
         })
         .collect::<Result<Vec<_>, String>>()?;
     crate::math::pool::install(formulas);
-    let fonts = bundle
-        .fonts
-        .iter()
-        .map(|f| {
-            // egui keeps font bytes for the life of the page
-            let bytes: &'static [u8] = Box::leak(f.bytes()?.into_boxed_slice());
-            Ok((f.path.clone(), bytes))
-        })
-        .collect::<Result<Vec<_>, String>>()?;
+    // egui keeps font bytes for the life of the page; a face named twice is kept once
+    let mut kept: Vec<(usize, &'static [u8])> = Vec::new();
+    let mut fonts = Vec::new();
+    for f in &bundle.fonts {
+        let bytes = match kept.iter().find(|(blob, _)| *blob == f.blob) {
+            Some((_, bytes)) => *bytes,
+            None => {
+                let bytes: &'static [u8] =
+                    Box::leak(bundle.bytes_of(f)?.to_vec().into_boxed_slice());
+                kept.push((f.blob, bytes));
+                bytes
+            }
+        };
+        fonts.push((f.path.clone(), bytes));
+    }
     crate::math::set_bundled_fonts(fonts);
     crate::project_files::install(bundle.project_files()?).map_err(String::from)
 }

@@ -1,4 +1,4 @@
-//! The page around the canvas: the bundle's text, and errors shown as text (a player that
+//! The page around the canvas: the bundle's bytes, and errors shown as text (a player that
 //! cannot start must say why, never leave a blank canvas).
 
 use wasm_bindgen::JsCast as _;
@@ -6,11 +6,13 @@ use wasm_bindgen::JsCast as _;
 /// The element `index.html` keeps for a readable error.
 const ERROR_ID: &str = "lectern-error";
 
-/// The bundle's JSON, which `bundle.js` (a classic script) put in `window.LECTERN_BUNDLE`.
-pub fn bundle_text(window: &web_sys::Window) -> Result<String, String> {
+/// The bundle's bytes, which `index.html` put in `window.LECTERN_BUNDLE` (a `Uint8Array`), opened
+/// from `bundle.js`'s gzipped base64.
+pub fn bundle_bytes(window: &web_sys::Window) -> Result<Vec<u8>, String> {
     js_sys::Reflect::get(window, &"LECTERN_BUNDLE".into())
         .ok()
-        .and_then(|v| v.as_string())
+        .and_then(|v| v.dyn_into::<js_sys::Uint8Array>().ok())
+        .map(|a| a.to_vec())
         .ok_or_else(|| {
             "the slides' bundle (bundle.js) is missing or damaged: export the page again \
              with `lectern export DECK --web DIR`"
