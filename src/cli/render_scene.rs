@@ -45,8 +45,9 @@ pub struct Args {
     pub fish_detail: Option<f32>,
     /// Draw and simulate as step K of the automatic quality's ladder does (1 = full quality,
     /// 9 = the coarsest; the presenter panel shows the step in use): render scale, fish detail,
-    /// shadow filter, grids, water normals and school stepping
-    #[arg(long, value_name = "K", conflicts_with_all = ["render_scale", "fish_detail"])]
+    /// shadow filter, grids, water normals and school stepping; with --render-scale, the
+    /// rung at that scale instead of its own
+    #[arg(long, value_name = "K", conflicts_with_all = ["fish_detail"])]
     pub rung: Option<usize>,
     /// Techniques to leave out, comma-separated (to see or time what each adds): env-map,
     /// normal-maps, shadows, fish-shadows, brdf, fresnel, caustics, fxaa
@@ -153,6 +154,16 @@ pub fn run(args: Args) -> Result<()> {
     for &t in &args.off {
         switch_off(&mut h.settings, t);
     }
+    if let Some(k) = args.rung {
+        let ladder = &scene::quality::LADDER;
+        let rung = k
+            .checked_sub(1)
+            .and_then(|i| ladder.get(i))
+            .with_context(|| format!("--rung {k}: the ladder has steps 1 to {}", ladder.len()))?;
+        h.settings.apply_rung(rung);
+        h.sim.set_school_every(rung.school_every);
+    }
+    // after the rung: a rung at another scale (to time what its scale alone costs)
     if let Some(s) = args.render_scale {
         anyhow::ensure!(
             (0.25..=1.0).contains(&s),
@@ -163,15 +174,6 @@ pub fn run(args: Args) -> Result<()> {
     if let Some(d) = args.fish_detail {
         anyhow::ensure!((0.0..=4.0).contains(&d), "--fish-detail must be in 0..=4");
         h.settings.fish_detail = d;
-    }
-    if let Some(k) = args.rung {
-        let ladder = &scene::quality::LADDER;
-        let rung = k
-            .checked_sub(1)
-            .and_then(|i| ladder.get(i))
-            .with_context(|| format!("--rung {k}: the ladder has steps 1 to {}", ladder.len()))?;
-        h.settings.apply_rung(rung);
-        h.sim.set_school_every(rung.school_every);
     }
     let setup = t0.elapsed();
     std::fs::create_dir_all(&args.out)
