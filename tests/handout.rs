@@ -138,18 +138,7 @@ fn a_small_dark_deck_prints_light_with_its_handout_texts() {
         );
         assert!(text.contains("Small handout deck"), "the header: {text}");
         assert!(!text.contains("SPEAKERCUE"), "a speaker note: {text}");
-        let imgs_dir = dir.path().join(format!("img-{per_page}"));
-        std::fs::create_dir(&imgs_dir).unwrap();
-        let imgs = pictures(&pdf, &imgs_dir);
-        assert_eq!(imgs.len(), 3, "one picture per slide");
-        for (i, img) in imgs.iter().enumerate() {
-            let luma = border_luma(img);
-            assert!(
-                luma > LIGHT_LUMA,
-                "slide {}: background luma {luma:.0}",
-                i + 1
-            );
-        }
+        assert_light_pictures(&pdf, &dir.path().join(format!("img-{per_page}")), 3);
     }
     // the same deck's slides PDF shows its own (dark) theme
     let slides_pdf = dir.path().join("slides.pdf");
@@ -244,18 +233,7 @@ fn the_bundled_lecture_handout_is_small_light_and_has_every_text() {
             !text.contains(&cue),
             "{per_page} a page: a speaker note is printed"
         );
-        let imgs_dir = dir.path().join(format!("img-{per_page}"));
-        std::fs::create_dir(&imgs_dir).unwrap();
-        let imgs = pictures(&pdf, &imgs_dir);
-        assert_eq!(imgs.len(), n, "one picture per slide");
-        for (i, img) in imgs.iter().enumerate() {
-            let luma = border_luma(img);
-            assert!(
-                luma > LIGHT_LUMA,
-                "slide {}: background luma {luma:.0}",
-                i + 1
-            );
-        }
+        assert_light_pictures(&pdf, &dir.path().join(format!("img-{per_page}")), n);
     }
 }
 
@@ -343,4 +321,19 @@ fn handout_slides_draw_no_controls_and_every_control_is_listed() {
         in_tree_controls >= 30,
         "{in_tree_controls} controls in the trees"
     );
+}
+
+/// The PDF's slide pictures (extracted into `imgs_dir`) are `n`, each on a light background.
+fn assert_light_pictures(pdf: &Path, imgs_dir: &Path, n: usize) {
+    std::fs::create_dir(imgs_dir).unwrap();
+    let imgs = pictures(pdf, imgs_dir);
+    assert_eq!(imgs.len(), n, "one picture per slide");
+    for (i, img) in imgs.iter().enumerate() {
+        let luma = border_luma(img);
+        assert!(
+            luma > LIGHT_LUMA,
+            "slide {}: background luma {luma:.0}",
+            i + 1
+        );
+    }
 }
