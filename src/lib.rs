@@ -12,6 +12,7 @@ pub mod paths;
 pub mod project_files;
 pub mod ron_tree;
 pub mod web_bundle;
+pub mod z85;
 
 // numerics and simulation: no GPU or UI types below this line
 pub mod ode;

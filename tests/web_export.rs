@@ -28,24 +28,22 @@ fn export_web(dir: &Path, deck: &Path, extra: &[&str]) -> std::process::Output {
         .unwrap()
 }
 
-/// `window.NAME = "<base64 of gzip>";` opened as the page opens it.
+/// `window.NAME = { bytes: N, z85: "<Z85 of gzip>" };` opened as the page opens it.
 fn gunzip_script(file: &Path, name: &str) -> Vec<u8> {
     let js = std::fs::read_to_string(file).unwrap();
-    let b64 = js
+    let (bytes, text) = js
         .trim()
-        .strip_prefix(&format!("window.{name} = \""))
-        .and_then(|s| s.strip_suffix("\";"))
+        .strip_prefix(&format!("window.{name} = {{ bytes: "))
+        .and_then(|s| s.strip_suffix("\" };"))
+        .and_then(|s| s.split_once(", z85: \""))
         .unwrap();
-    use base64::Engine as _;
-    let gz = base64::engine::general_purpose::STANDARD
-        .decode(b64)
-        .unwrap();
+    let gz = lectern::z85::decode(text, bytes.parse().unwrap()).unwrap();
     let mut out = Vec::new();
     std::io::Read::read_to_end(&mut flate2::read::GzDecoder::new(&gz[..]), &mut out).unwrap();
     out
 }
 
-/// The bundle as the player reads it: bundle.js is `window.LECTERN_BUNDLE_GZ = "<base64>";`.
+/// The bundle as the player reads it from bundle.js's `window.LECTERN_BUNDLE_GZ`.
 fn read_bundle(page: &Path) -> WebBundle {
     WebBundle::from_bytes(&gunzip_script(&page.join("bundle.js"), "LECTERN_BUNDLE_GZ")).unwrap()
 }
@@ -83,7 +81,7 @@ fn the_bundle_holds_the_deck_its_files_formulas_and_fonts() {
         );
     }
     assert!(!html.contains("type=\"module\"") && html.contains("Talk &lt;1&gt;"));
-    // the player's wasm, gzipped, as base64
+    // the player's wasm, gzipped, as Z85
     let wasm = gunzip_script(&page.join("player.js"), "LECTERN_WASM_GZ");
     assert_eq!(wasm, b"\0asm\x01\0\0\0");
 

@@ -7,7 +7,7 @@ use wasm_bindgen::JsCast as _;
 const ERROR_ID: &str = "lectern-error";
 
 /// The bundle's bytes, which `index.html` put in `window.LECTERN_BUNDLE` (a `Uint8Array`), opened
-/// from `bundle.js`'s gzipped base64.
+/// from `bundle.js`'s gzip as Z85 text.
 pub fn bundle_bytes(window: &web_sys::Window) -> Result<Vec<u8>, String> {
     js_sys::Reflect::get(window, &"LECTERN_BUNDLE".into())
         .ok()
