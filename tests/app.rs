@@ -13,7 +13,7 @@ use lectern::deck::DeckSession;
 
 const SIZE: [f32; 2] = [960.0, 540.0];
 
-mod common;
+use crate::common;
 use common::lecture_copy;
 
 /// A small deck that stays fixed (the bundled lecture changes), for snapshots: a title slide,

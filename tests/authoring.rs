@@ -5,7 +5,7 @@
 //! one unparsable slide leaves the others presenting and exporting; the presenter's controls and
 //! its typed-equation preview fit 1280×720; a phase plane in a column shows the view it asks for.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

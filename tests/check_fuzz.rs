@@ -5,7 +5,7 @@
 //! Seeded, so a failure is reproducible; the failing input is written to
 //! `target/check-fuzz-failures/`. CI runs 10 000 cases (a few seconds); for a longer run:
 //!
-//!     LECTERN_FUZZ_CASES=1000000 LECTERN_FUZZ_SEED=7 cargo test --release --test check_fuzz
+//!     LECTERN_FUZZ_CASES=1000000 LECTERN_FUZZ_SEED=7 cargo test --release --test suite check_fuzz::
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::PathBuf;
@@ -192,8 +192,7 @@ fn mutated_files_never_panic_check() {
     let mut failures = Vec::new();
     let mut per_kind = [0usize; 5];
     let mut secs_per_kind = [0f64; 5];
-    let quiet = std::panic::take_hook();
-    std::panic::set_hook(Box::new(|_| {}));
+    let quiet = QuietPanics::on_this_thread();
     for case in 0..cases {
         // Costs per case in a debug build: a shader ~5 ms (naga is unoptimised there), a deck
         // ~1 ms plus ~10 ms per new formula typeset, the others well under 1 ms. So: shaders
@@ -244,7 +243,7 @@ fn mutated_files_never_panic_check() {
             std::fs::copy(&shaders[original.unwrap()], &file).unwrap();
         }
     }
-    std::panic::set_hook(quiet);
+    drop(quiet); // the verdict below must be heard
     println!(
         "{cases} cases (seed {seed}): deck, scene, shader, problem, tableau = {per_kind:?} \
          in {secs_per_kind:.2?} s"
@@ -256,4 +255,35 @@ fn mutated_files_never_panic_check() {
         failures_dir.display(),
         failures.join("\n")
     );
+}
+
+thread_local! {
+    static QUIET: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// Silences panic messages on this thread while it lives: the fuzzer expects panics and
+/// reports them itself. The other tests of this binary run beside it and keep their messages,
+/// so the hook is process-wide but asks the thread.
+struct QuietPanics;
+
+impl QuietPanics {
+    fn on_this_thread() -> Self {
+        static HOOK: std::sync::Once = std::sync::Once::new();
+        HOOK.call_once(|| {
+            let previous = std::panic::take_hook();
+            std::panic::set_hook(Box::new(move |info| {
+                if !QUIET.with(|q| q.get()) {
+                    previous(info);
+                }
+            }));
+        });
+        QUIET.with(|q| q.set(true));
+        QuietPanics
+    }
+}
+
+impl Drop for QuietPanics {
+    fn drop(&mut self) {
+        QUIET.with(|q| q.set(false));
+    }
 }

@@ -2,9 +2,9 @@
 //! on whatever adapter exists (Mesa's software one in CI), compared with committed goldens.
 //!
 //! Regenerate the goldens after an intended change (then LOOK at them before committing):
-//!     UPDATE_SNAPSHOTS=1 cargo test --test export every_slide_matches_its_export_golden
+//!     UPDATE_SNAPSHOTS=1 cargo test --test suite export::every_slide_matches_its_export_golden
 
-mod common;
+use crate::common;
 use common::{export, poppler};
 
 use std::path::{Path, PathBuf};

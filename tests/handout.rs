@@ -3,7 +3,7 @@
 //! `handout:` texts searchable, the speaker notes absent, the bundled lecture's file small.
 //! Read back with poppler (`pdfinfo`, `pdftotext`, `pdfimages`), which CI installs.
 
-mod common;
+use crate::common;
 use common::{export, poppler};
 
 use std::path::{Path, PathBuf};

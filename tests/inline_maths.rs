@@ -3,7 +3,7 @@
 //! and checked by `lectern check` down to the character.
 //!
 //! Regenerate the snapshot after an intended change (then LOOK at it before committing):
-//!     UPDATE_SNAPSHOTS=1 cargo test --test inline_maths
+//!     UPDATE_SNAPSHOTS=1 cargo test --test suite inline_maths::
 
 use std::path::Path;
 use std::process::Command;

@@ -10,7 +10,6 @@ use lectern::deck::widgets::WidgetSpec;
 use lectern::deck::{Deck, load_deck, parse_deck};
 use lectern::widgets::{ExprSlot, PlotData};
 
-mod common;
 
 fn bundled() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("slides/lecture.ron")
@@ -628,7 +627,7 @@ fn typing_on_the_presenter_view_changes_the_plot_on_enter_and_ctrl_s_writes_it_b
 
 /// Keystroke → new plot data for the deck's slope field (parse + compile + solve + field), and
 /// the expression against a native closure on the widget's own path. A measurement, not a test:
-/// it prints and asserts nothing about time (`cargo test --test live_odes keystroke -- --ignored
+/// it prints and asserts nothing about time (`cargo test --test suite live_odes::keystroke -- --ignored
 /// --nocapture`; summarised in docs/benchmarks/live-odes.md).
 #[test]
 #[ignore]

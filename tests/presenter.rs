@@ -12,7 +12,7 @@ use lectern::deck::{Deck, DeckSession, load_deck, parse_deck};
 use lectern::reload::Reloaded;
 use lectern::widgets::ParamSnapshot;
 
-mod common;
+use crate::common;
 
 const H: &str = "h";
 

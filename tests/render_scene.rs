@@ -3,7 +3,7 @@
 //! the default scene and each debug view match committed PNGs within a tolerance that a
 //! visible change (shadows off) exceeds.
 //!
-//! Record new goldens with `UPDATE_SNAPSHOTS=1 cargo test --test render_scene`.
+//! Record new goldens with `UPDATE_SNAPSHOTS=1 cargo test --test suite render_scene::`.
 
 use std::path::Path;
 
@@ -11,7 +11,7 @@ use lectern::render::frame::ShadowFilter;
 use lectern::render::{DebugView, Headless, shaders};
 use lectern::scene;
 
-mod common;
+use crate::common;
 
 const SIZE: (u32, u32) = (320, 180);
 /// The golden images: large enough that a fish is several pixels long.

@@ -3,7 +3,7 @@
 //! within the scene goldens' tolerance; the toggles and the view reach the picture; a snapshot of
 //! the widget in a kittest harness; a missing scene file is reported, not panicked on.
 //!
-//! Record the snapshot with `UPDATE_SNAPSHOTS=1 cargo test --test scene_slide` (then look).
+//! Record the snapshot with `UPDATE_SNAPSHOTS=1 cargo test --test suite scene_slide::` (then look).
 
 use std::path::{Path, PathBuf};
 
@@ -14,7 +14,7 @@ use lectern::render::Headless;
 use lectern::widgets::SlideWidget;
 use lectern::widgets::scene::{SceneGpu, SceneWidget, render_settings};
 
-mod common;
+use crate::common;
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))

@@ -3,7 +3,7 @@
 //! lower quality rungs. Each fails if its technique stops changing the picture visibly (or, for
 //! the cheaper rung, starts changing it more than a little).
 //!
-//! Record the golden with `UPDATE_SNAPSHOTS=1 cargo test --test scene_techniques`.
+//! Record the golden with `UPDATE_SNAPSHOTS=1 cargo test --test suite scene_techniques::`.
 
 use std::path::Path;
 
@@ -11,7 +11,7 @@ use lectern::render::Headless;
 use lectern::render::frame::WaterNormals;
 use lectern::scene;
 
-mod common;
+use crate::common;
 
 const SIZE: (u32, u32) = (640, 360);
 

@@ -4,7 +4,7 @@
 //! adapter the numbers are the CPU time llvmpipe spends on the frame; see
 //! docs/benchmarks/slides.md. Run:
 //!
-//! `cargo test --release --test slide_frame_cost -- --ignored --nocapture`
+//! `cargo test --release --test suite slide_frame_cost:: -- --ignored --nocapture`
 
 use std::cell::Cell;
 use std::time::Instant;

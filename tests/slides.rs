@@ -5,9 +5,9 @@
 //! `lectern export`.
 //!
 //! Regenerate after an intended change (then LOOK at the PNGs before committing):
-//!     UPDATE_SNAPSHOTS=1 cargo test --test slides
+//!     UPDATE_SNAPSHOTS=1 cargo test --test suite slides::
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 use std::sync::Arc;

@@ -3,7 +3,7 @@
 //! server on 127.0.0.1, driven by `tests/browser/player.py` (selenium, chromium-driver). Skipped,
 //! loudly, only where Chromium is not installed; CI installs it (`.ci/run`).
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;

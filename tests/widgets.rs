@@ -2,7 +2,7 @@
 //! egui_kittest on the wgpu software adapter and compared with `tests/snapshots/widget-*.png`.
 //!
 //! Regenerate after an intended change (then LOOK at the PNGs before committing):
-//!     UPDATE_SNAPSHOTS=1 cargo test --test widgets
+//!     UPDATE_SNAPSHOTS=1 cargo test --test suite widgets::
 
 use std::sync::atomic::Ordering;
 
@@ -527,7 +527,7 @@ fn params_round_trip_through_reload_and_reset() {
 
 /// Wall time of the work-precision slide's whole study (what its background thread runs, with
 /// live timing: each run repeated until 2 ms or 50 times), the slide before the adaptive pairs
-/// and now. A measurement, not a test (run with `cargo test --test widgets study_time --
+/// and now. A measurement, not a test (run with `cargo test --test suite widgets::study_time --
 /// --ignored --nocapture`); the figures are in docs/benchmarks/work-precision-slide.md.
 #[test]
 #[ignore]
@@ -601,7 +601,7 @@ fn work_precision_study_time() {
 
 /// Frame cost of the long-path widgets while the lecturer drags `h` (a new h every frame) and
 /// while nothing changes, in this build on this adapter. A measurement, not a test: it prints
-/// and asserts nothing about time (run with `cargo test --test widgets frame_cost -- --ignored
+/// and asserts nothing about time (run with `cargo test --test suite widgets::frame_cost -- --ignored
 /// --nocapture`).
 #[test]
 #[ignore]
