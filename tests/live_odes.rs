@@ -10,7 +10,6 @@ use lectern::deck::widgets::WidgetSpec;
 use lectern::deck::{Deck, load_deck, parse_deck};
 use lectern::widgets::{ExprSlot, PlotData};
 
-
 fn bundled() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("slides/lecture.ron")
 }

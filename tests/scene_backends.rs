@@ -11,7 +11,6 @@ use lectern::render::caps::RenderCaps;
 use lectern::render::gpu::{Gpu, GpuRequest};
 use lectern::scene;
 
-
 const SIZE: (u32, u32) = (640, 360);
 
 fn scene_at(t: f64) -> Headless {
