@@ -45,4 +45,5 @@ mod typeset_live;
 mod waves;
 mod web_export;
 mod web_player;
+mod web_scene;
 mod widgets;

@@ -4,7 +4,9 @@
 //! (wasm-bindgen's `no-modules` glue), `player.js` (the player's wasm, gzipped, as Z85 text: `z85.rs`) and
 //! `bundle.js` (the [`WebBundle`], gzipped, as Z85: the deck and every file its loading and
 //! drawing read, collected with [`project_files::Recording`], every formula the slides asked
-//! for typeset by the app's own Typst at twice its layout size, and the fonts the slides use).
+//! for typeset by the app's own Typst at twice its layout size, and the fonts the slides use),
+//! and `scene-still.jpg`, the water scene as `render-scene` draws it, which the page shows with
+//! a one-line note where the browser has no WebGL2.
 //!
 //! The player is `target/web-player/`, made by `scripts/build-player`; export runs that script
 //! (with a progress line) when the player is missing or older than the sources.
@@ -78,7 +80,15 @@ pub fn export_web(deck_path: &Path, out: &Path, player_dir: &Path) -> anyhow::Re
     for (name, bytes) in crate::math::web_fonts() {
         bundle.add_font(name, bytes);
     }
-    let written = write_page(out, &deck.title, &bundle, player_dir)?;
+    // (after the bundle's files were read: the still is no file of the page's bundle)
+    let still = match scene_still(&_app.scene_path) {
+        Ok(jpeg) => Some(jpeg),
+        Err(e) => {
+            eprintln!("lectern: warning: no still of the scene for browsers without WebGL2: {e:#}");
+            None
+        }
+    };
+    let written = write_page(out, &deck.title, &bundle, player_dir, still)?;
     Ok(WebExport {
         files: written,
         failures,
@@ -104,6 +114,28 @@ fn read_scene_mode_files(root: &Path, scene_path: &Path) {
     for name in crate::render::pipeline::TECHNIQUE_SHADERS {
         let _ = crate::render::shaders::load(&folder.dir.join(name));
     }
+}
+
+/// The picture `index.html` shows, with a one-line note, where the browser has no WebGL2 (without
+/// which neither the slides nor the scene can draw): scene mode's scene as `render-scene`
+/// draws it at full quality, JPEG (~1 % of the page: 800×450 at quality 80 is 71 KB, where
+/// 960×540 at 85 was 114 KB and took the folder past 8 MB).
+pub const STILL_FILE: &str = "scene-still.jpg";
+pub const STILL_SIZE_PX: (u32, u32) = (800, 450);
+/// Seconds into the scene: the schools have spread from where they spawned.
+pub const STILL_TIME_S: f64 = 6.0;
+const JPEG_QUALITY: u8 = 80;
+
+fn scene_still(scene_path: &Path) -> anyhow::Result<Vec<u8>> {
+    let scene = crate::scene::load_scene(scene_path).map_err(|d| anyhow::anyhow!("{d}"))?;
+    let folder = crate::bundled::shader_folder_for_scene(scene_path).map_err(anyhow::Error::msg)?;
+    let mut h = crate::render::Headless::new(scene, &folder.dir)?;
+    h.sim.set_time(STILL_TIME_S);
+    let rgb = image::DynamicImage::ImageRgba8(h.render(STILL_SIZE_PX)?).into_rgb8();
+    let mut jpeg = Vec::new();
+    image::codecs::jpeg::JpegEncoder::new_with_quality(&mut jpeg, JPEG_QUALITY)
+        .encode_image(&rgb)?;
+    Ok(jpeg)
 }
 
 /// Each formula asked for, once (at the largest size asked), typeset at twice that size.
@@ -161,6 +193,7 @@ fn write_page(
     title: &str,
     bundle: &WebBundle,
     player_dir: &Path,
+    still: Option<Vec<u8>>,
 ) -> anyhow::Result<Vec<PathBuf>> {
     std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
     let read = |name: &str| {
@@ -184,12 +217,19 @@ fn write_page(
     };
     let wasm_js = gzip_script("LECTERN_WASM_GZ", &wasm)?;
     let bundle_js = gzip_script("LECTERN_BUNDLE_GZ", &bundle.to_bytes())?;
-    let files = [
+    let mut files = vec![
         ("index.html", index_html(title).into_bytes()),
         ("lectern.js", glue),
         ("player.js", wasm_js),
         ("bundle.js", bundle_js),
     ];
+    match still {
+        Some(jpeg) => files.push((STILL_FILE, jpeg)),
+        // (an old one would show a scene this deck may not have)
+        None => {
+            let _ = std::fs::remove_file(out.join(STILL_FILE));
+        }
+    }
     let mut written = Vec::new();
     for (name, bytes) in files {
         let file = out.join(name);
@@ -229,12 +269,15 @@ const INDEX_HTML: &str = r#"<!doctype html>
   #lectern-loading, #lectern-error { position: absolute; left: 2em; top: 2em; right: 2em;
     font: 18px/1.5 system-ui, sans-serif; color: #e8e8e8; }
   #lectern-error { display: none; color: #ffb4a8; white-space: pre-wrap; }
+  #lectern-still { display: none; margin-top: 1em; max-width: 100%;
+    max-height: calc(100vh - 10em); }
 </style>
 </head>
 <body>
 <canvas id="lectern-canvas"></canvas>
 <div id="lectern-loading">Loading the slides…</div>
 <div id="lectern-error" role="alert"></div>
+<img id="lectern-still" alt="The water scene, as exported" onerror="this.remove()">
 <script src="lectern.js"></script>
 <script src="player.js"></script>
 <script src="bundle.js"></script>
@@ -250,6 +293,30 @@ const INDEX_HTML: &str = r#"<!doctype html>
     document.getElementById("lectern-canvas").style.display = "none";
     var loading = document.getElementById("lectern-loading");
     if (loading) loading.remove();
+  }
+  // no WebGL2, nothing draws: say why, and show the scene as exported
+  function hasWebGL2() {
+    try {
+      var gl = window.WebGL2RenderingContext && document.createElement("canvas").getContext("webgl2");
+      var lose = gl && gl.getExtension("WEBGL_lose_context");
+      if (lose) lose.loseContext();  // (the player makes its own)
+      return !!gl;
+    } catch (e) {
+      return false;
+    }
+  }
+  if (!hasWebGL2()) {
+    fail("this browser has no WebGL2, which the slides draw with: turn on hardware " +
+      "acceleration or open the page in a current Firefox, Chrome or Safari. Below, the water " +
+      "scene as exported.");
+    var still = document.getElementById("lectern-still");
+    if (still) {
+      // under the note, in its flow
+      document.getElementById("lectern-error").appendChild(still);
+      still.src = "scene-still.jpg";
+      still.style.display = "block";
+    }
+    return;
   }
   if (typeof wasm_bindgen === "undefined" || !isPacked(window.LECTERN_WASM_GZ)) {
     fail("the player (lectern.js, player.js) is missing or damaged: export the page again " +

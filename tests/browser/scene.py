@@ -8,6 +8,8 @@ measures its frame rate in the page, and checks the console. Prints one JSON obj
 figures on the last line; exit status 0 when every check here passed.
 
 Usage: scene.py --url URL --slide N --shots DIR [--size WxH] [--fps-seconds S]
+       scene.py --no-webgl2 --url URL --shots DIR   (a browser without WebGL2: expect the note
+                                                     and the exported still, no canvas)
 """
 import argparse
 import json
@@ -104,19 +106,62 @@ def check(args, figures):
         d.quit()
 
 
+# Before any of the page's scripts: a browser without WebGL2, as the page sees one.
+NO_WEBGL2 = """
+delete window.WebGL2RenderingContext;
+var getContext = HTMLCanvasElement.prototype.getContext;
+HTMLCanvasElement.prototype.getContext = function (kind) {
+  return kind === "webgl2" ? null : getContext.apply(this, arguments);
+};
+"""
+
+
+def check_no_webgl2(args, figures):
+    """The note says why, the still is shown (its rect and size in the figures, a screenshot in
+    no-webgl2.png for the Rust test to compare with the JPEG), and the canvas is hidden."""
+    size = tuple(int(v) for v in args.size.split("x"))
+    d = browser(size)
+    try:
+        d.execute_cdp_cmd("Page.addScriptToEvaluateOnNewDocument", {"source": NO_WEBGL2})
+        d.get(args.url)
+        wait_for(d, "var e = document.getElementById('lectern-error');"
+                    " return e && e.offsetParent !== null && e.textContent.length > 0", 30)
+        text = d.find_element(By.ID, "lectern-error").text
+        assert "WebGL2" in text, "the note does not say why: %r" % text
+        figures["no_webgl2_text"] = text
+        wait_for(d, "var i = document.getElementById('lectern-still');"
+                    " return i && i.complete && i.naturalWidth > 0", 30)
+        figures["still"] = d.execute_script(
+            "var i = document.getElementById('lectern-still'), r = i.getBoundingClientRect();"
+            "return {x: r.left, y: r.top, w: r.width, h: r.height,"
+            "        naturalWidth: i.naturalWidth, naturalHeight: i.naturalHeight};")
+        assert d.execute_script(
+            "return document.getElementById('lectern-canvas').offsetParent === null"), \
+            "the canvas is still shown"
+        assert d.execute_script("return !window.lectern || !window.lectern.ready"), \
+            "the player started without WebGL2"
+        with open(args.shots + "/no-webgl2.png", "wb") as f:
+            f.write(canvas_png(d))
+        errors = severe(d)
+        assert not errors, "console errors: %r" % errors
+    finally:
+        d.quit()
+
+
 def main():
     p = argparse.ArgumentParser()
     p.add_argument("--url", required=True)
-    p.add_argument("--slide", type=int, required=True)
+    p.add_argument("--slide", type=int)
     p.add_argument("--shots", required=True)
     p.add_argument("--size", default="1280x720")
     p.add_argument("--settle-seconds", type=float, default=6.0)
     p.add_argument("--fps-seconds", type=float, default=5.0)
+    p.add_argument("--no-webgl2", action="store_true")
     args = p.parse_args()
     figures = {}
     ok = True
     try:
-        check(args, figures)
+        (check_no_webgl2 if args.no_webgl2 else check)(args, figures)
     except AssertionError as e:
         print("FAILED " + str(e), file=sys.stderr)
         ok = False
