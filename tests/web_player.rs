@@ -22,11 +22,18 @@ const EQUATION: &str = "-2*x + cos(3*t)";
 /// a missing title, formula or line of text fails by far more.
 const MAX_FAILED_FRACTION: f64 = common::SCENE_MAX_FAILED_FRACTION;
 
+/// The Python with selenium that drives the browser (it must exist once the browser does).
 pub(crate) fn python() -> PathBuf {
-    if let Some(p) = std::env::var_os("LECTERN_BROWSER_PYTHON") {
-        return p.into();
-    }
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("target/browser-venv/bin/python")
+    let py = match std::env::var_os("LECTERN_BROWSER_PYTHON") {
+        Some(p) => PathBuf::from(p),
+        None => Path::new(env!("CARGO_MANIFEST_DIR")).join("target/browser-venv/bin/python"),
+    };
+    assert!(
+        py.exists(),
+        "{} is missing: run scripts/setup-browser-test (a venv with selenium under target/)",
+        py.display()
+    );
+    py
 }
 
 pub(crate) fn browser_missing() -> bool {
@@ -124,11 +131,6 @@ fn the_exported_page_pages_plots_and_types_in_chromium() {
         return;
     }
     let py = python();
-    assert!(
-        py.exists(),
-        "{} is missing: run scripts/setup-browser-test (a venv with selenium under target/)",
-        py.display()
-    );
     let tmp = tempfile::tempdir().unwrap();
     let page = tmp.path().join("page");
     let deck_path = Path::new(env!("CARGO_MANIFEST_DIR")).join("slides/lecture.ron");
