@@ -98,6 +98,36 @@ canvas.dispatchEvent(new KeyboardEvent("keyup", o));
 """
 
 
+# A drag inside the page, timed the same way: `phase` "down" presses the mouse at (x, y) (CSS
+# pixels), "move" moves it there with the button held, "up" lets go; down and move wait for a
+# frame whose plot hash differs from the last frame's (the test sets `trackPlot` first).
+IN_PAGE_DRAG = """
+var x = arguments[0], y = arguments[1], phase = arguments[2], done = arguments[arguments.length - 1];
+var h = window.lectern, canvas = document.getElementById("lectern-canvas");
+var frames = h.frames, last = frames[frames.length - 1], before = last ? last.plot : null;
+var o = {clientX: x, clientY: y, screenX: x, screenY: y, button: 0, buttons: 1, pointerId: 1,
+         pointerType: "mouse", isPrimary: true, bubbles: true, cancelable: true};
+var t0 = performance.now();
+if (phase === "up") {
+  o.buttons = 0;
+  canvas.dispatchEvent(new PointerEvent("pointerup", o));
+  done(null);
+  return;
+}
+// (eframe takes presses as pointer events and moves as mouse events)
+canvas.dispatchEvent(phase === "down" ? new PointerEvent("pointerdown", o) : new MouseEvent("mousemove", o));
+(function poll() {
+  for (var i = frames.indexOf(last) + 1; i < frames.length; i++) {
+    var e = frames[i];
+    if (e.t === null) break;
+    if (e.plot !== null && e.plot !== before) { done({ms: e.t - t0, ui_ms: e.ui - t0}); return; }
+  }
+  if (performance.now() - t0 > 5000) { done(null); return; }
+  setTimeout(poll, 2);
+})();
+"""
+
+
 def key_in_page(d, k, want):
     r = d.execute_async_script(IN_PAGE_KEY, k, want)
     assert r is not None, "key %r: no frame showed %r within 10 s" % (k, want)
@@ -130,12 +160,35 @@ def time_keys(d, args, figures, tag, repeats=12):
         plotting.append(key_in_page(d, "-" if i % 2 == 0 else "+", "plot"))
     d.execute_script("window.lectern.trackPlot = false")
     for name, runs in [("key_to_next_slide_ms", paging), ("h_key_to_new_plot_frame_ms", plotting)]:
-        painted = [r["ms"] for r in runs]
-        figures[tag + "_" + name] = {
-            "median": round(median(painted), 1), "min": round(min(painted), 1),
+        figures[tag + "_" + name] = latency_figures(runs)
+
+
+def latency_figures(runs):
+    painted = [r["ms"] for r in runs]
+    return {"median": round(median(painted), 1), "min": round(min(painted), 1),
             "max": round(max(painted), 1), "n": len(painted),
             # the same frames when the app's ui returned, before eframe's paint
             "ui_median": round(median([r["ui_ms"] for r in runs]), 1)}
+
+
+def time_drag(d, args, figures, tag, repeats=12):
+    """A drag across the slope field moves its start point: each move must bring a frame with
+    new points; the median from the move to that frame painted, measured in the page. (Run on
+    a freshly loaded page: the notes panel, open after the typing check, would cover the plot.)"""
+    d.execute_script("location.hash = '#/%d'" % args.slope)
+    wait_for(d, "return window.lectern.slide() === %d" % args.slope, 10)
+    d.execute_script("window.lectern.trackPlot = true")
+    w, h = (int(v) for v in args.size.split("x"))
+    x, y = 0.5 * w, 0.6 * h  # inside the slope field's plot
+    d.execute_async_script(IN_PAGE_DRAG, x, y, "down")
+    dragging = []
+    for i in range(repeats):
+        r = d.execute_async_script(IN_PAGE_DRAG, x + (12 if i % 2 == 0 else 0), y, "move")
+        assert r is not None, "a drag across the slope field did not change plotData()"
+        dragging.append(r)
+    d.execute_async_script(IN_PAGE_DRAG, x, y, "up")
+    d.execute_script("window.lectern.trackPlot = false")
+    figures[tag + "_drag_to_new_plot_frame_ms"] = latency_figures(dragging)
 
 
 def walk_all_slides(d, args, figures, tag):
@@ -314,6 +367,7 @@ def check_page(args, url, size, figures, tag):
             walk_all_slides(d, args, figures, tag)
             spiral_off(d, args, figures, tag)
             work_precision_link(d, args, figures, tag, url)
+            time_drag(d, args, figures, tag)
         errors = severe(d)
         assert not errors, "console errors: %r" % errors
     finally:
