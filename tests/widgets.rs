@@ -69,6 +69,64 @@ fn check(results: &mut SnapshotResults, name: &str, ron_spec: &str) {
 
 const SLOPE_1D: &str = "SlopeField((ode: File(\"problems/forced.ron\"), start: (0.0, 1.5), h: 0.5, t_end: 8.0, view: (0.0, 8.0, -1.5, 2.0)))";
 
+/// A drag across the slope field moves its start point, and the paths on screen are solved
+/// from where the pointer is in the frame that sees it move, not one frame late (in the
+/// browser's software WebGL2 that frame is ~70 ms: docs/benchmarks/web.md).
+#[test]
+fn a_dragged_start_point_is_solved_from_in_the_frame_that_moves_it() {
+    use egui::{Event, PointerButton, Pos2};
+    use lectern::widgets::slope_field::SlopeField;
+    let WidgetSpec::SlopeField(spec) = spec_of(SLOPE_1D) else {
+        unreachable!()
+    };
+    let w = SlopeField::new(spec, Some(deck_path()));
+    let mut h = Harness::builder()
+        .with_size(SIZE)
+        .with_context_setup(|ctx| lectern::math::install_egui_fallback_fonts(ctx))
+        .build_ui_state(|ui, w: &mut SlopeField| w.ui(ui), w);
+    h.run_steps(3);
+    let first = h.state().spec.start;
+    assert_eq!(h.state().solved_start(), first);
+    // inside the plot, which fills the widget below its controls
+    let at = |x: f32| Pos2::new(x, 0.6 * SIZE.y);
+    h.event(Event::PointerMoved(at(400.0)));
+    h.step();
+    h.event(Event::PointerButton {
+        pos: at(400.0),
+        button: PointerButton::Primary,
+        pressed: true,
+        modifiers: Default::default(),
+    });
+    h.step();
+    let mut starts = Vec::new();
+    for x in [440.0, 480.0, 520.0, 560.0] {
+        h.event(Event::PointerMoved(at(x)));
+        h.step();
+        let w = h.state();
+        starts.push(w.spec.start);
+        // (the frame that starts the drag learns of it from the plot, after drawing)
+        if x > 440.0 {
+            assert_eq!(
+                w.solved_start(),
+                w.spec.start,
+                "at x = {x}: drawn a frame late"
+            );
+        }
+    }
+    h.event(Event::PointerButton {
+        pos: at(560.0),
+        button: PointerButton::Primary,
+        pressed: false,
+        modifiers: Default::default(),
+    });
+    h.step();
+    let moved: Vec<f64> = starts.iter().map(|s| s.unwrap().0).collect();
+    assert!(
+        moved.windows(2).all(|p| p[1] > p[0]) && moved[0] > first.unwrap().0,
+        "the start did not follow the drag: {first:?} then {moved:?}"
+    );
+}
+
 #[test]
 fn slope_field_states() {
     let mut r = SnapshotResults::new();

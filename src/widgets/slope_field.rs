@@ -61,6 +61,8 @@ pub struct SlopeField {
     methods: MethodSet,
     cache: Option<(Key, Computed)>,
     marks_cache: Option<(MarksKey, Marks)>,
+    /// the plot's transform while the start point is dragged ([`Self::follow_drag`])
+    drag_transform: Option<egui_plot::PlotTransform>,
 }
 
 /// Which two variables are drawn in the phase plane; `None` for a 1-D problem (t–x plane).
@@ -90,6 +92,41 @@ impl SlopeField {
             methods,
             cache: None,
             marks_cache: None,
+            drag_transform: None,
+        }
+    }
+
+    /// The start the paths on screen were solved from (after a frame: the spec's start).
+    pub fn solved_start(&self) -> Option<(f64, f64)> {
+        self.cache.as_ref().and_then(|(key, _)| key.0.start)
+    }
+
+    /// The start point at plot coordinates `(x, y)`, kept inside the view.
+    fn set_start(&mut self, x: f64, y: f64) {
+        let (x0, x1, y0, y1) = self.spec.view.unwrap_or((0.0, 1.0, 0.0, 1.0));
+        self.spec.start = Some((x.clamp(x0, x1), y.clamp(y0, y1)));
+    }
+
+    /// While the start point is dragged, it follows the pointer before the frame solves: the
+    /// plot's own response comes only after the paths were drawn, which put the picture a frame
+    /// behind the pointer (in the browser on a software rasteriser: 143 ms from move to new
+    /// paths, twice a key's). Through last frame's transform; the plot rarely moves mid-drag.
+    /// True when it moved the start (the plot's response then has nothing newer to say).
+    fn follow_drag(&mut self, ui: &egui::Ui) -> bool {
+        let Some(transform) = self.drag_transform else {
+            return false;
+        };
+        let (down, pos) = ui.input(|i| (i.pointer.primary_down(), i.pointer.latest_pos()));
+        match (down, pos) {
+            (true, Some(pos)) => {
+                let p = transform.value_from_position(pos);
+                self.set_start(p.x, p.y);
+                true
+            }
+            _ => {
+                self.drag_transform = None;
+                false
+            }
         }
     }
 
@@ -351,6 +388,7 @@ impl SlideWidget for SlopeField {
             );
         });
         style::problems_ui(ui, self.ode.load_error(), &self.methods.errors);
+        let followed = self.follow_drag(ui);
         self.update();
         self.update_marks();
         let Some((_, (origins, tips))) = &self.marks_cache else {
@@ -455,8 +493,9 @@ impl SlideWidget for SlopeField {
                 None
             }
         });
-        if let Some(PlotPoint { x, y }) = resp.inner {
-            self.spec.start = Some((x.clamp(x0, x1), y.clamp(y0, y1)));
+        self.drag_transform = resp.response.dragged().then_some(resp.transform);
+        if let Some(PlotPoint { x, y }) = resp.inner.filter(|_| !followed) {
+            self.set_start(x, y);
         }
     }
 
