@@ -94,6 +94,25 @@ pub struct WaveSum {
 /// Σ Q_i k_i A_i (≤ mean steepness) per iteration.
 pub const HEIGHT_ITERATIONS: usize = 8;
 
+/// [`WaveSum::rest_point_under`] over precomputed terms: `p0 ← world_xz − D_h(p0)`, with only
+/// the horizontal offsets (the cosines) summed.
+fn rest_point(terms: &[Terms], world_xz: DVec2, t_secs: f64) -> DVec2 {
+    let mut p0 = world_xz;
+    if terms.is_empty() {
+        return p0;
+    }
+    for _ in 0..HEIGHT_ITERATIONS {
+        let (mut dx, mut dz) = (0.0, 0.0);
+        for w in terms {
+            let c = (w.k * w.dir.dot(p0) - w.omega * t_secs).cos();
+            dx += w.q_amp * w.dir.x * c;
+            dz += w.q_amp * w.dir.y * c;
+        }
+        p0 = world_xz - DVec2::new(dx, dz);
+    }
+    p0
+}
+
 impl WaveSum {
     pub fn new(waves: Vec<GerstnerWave>, mean_level: f32) -> Self {
         Self { waves, mean_level }
@@ -156,21 +175,22 @@ impl WaveSum {
     /// The rest point whose displaced surface point lies above the world point `world_xz`:
     /// solves `p0 + D_h(p0) = world_xz` by fixed-point iteration `p0 ← world_xz − D_h(p0)`.
     pub fn rest_point_under(&self, world_xz: DVec2, t_secs: f64) -> DVec2 {
-        let mut p0 = world_xz;
-        if self.waves.is_empty() {
-            return p0;
-        }
-        for _ in 0..HEIGHT_ITERATIONS {
-            let d = self.displacement(p0, t_secs);
-            p0 = world_xz - DVec2::new(d.x, d.z);
-        }
-        p0
+        let terms: Vec<Terms> = self.terms().collect();
+        rest_point(&terms, world_xz, t_secs)
     }
 
     /// World y of the surface above (or below) the world point `world_xz` at time `t_secs`.
     pub fn height(&self, world_xz: DVec2, t_secs: f64) -> f64 {
-        let p0 = self.rest_point_under(world_xz, t_secs);
-        self.mean_level as f64 + self.displacement(p0, t_secs).y
+        // (the floating bodies ask this at every volume sample, four times a step: the terms
+        // once, and each wave's cosine alone in the iteration, its sine once after; the same
+        // sums as `displacement`'s, in the same order)
+        let terms: Vec<Terms> = self.terms().collect();
+        let p0 = rest_point(&terms, world_xz, t_secs);
+        let mut y = 0.0;
+        for w in &terms {
+            y += w.amp * (w.k * w.dir.dot(p0) - w.omega * t_secs).sin();
+        }
+        self.mean_level as f64 + y
     }
 
     /// Unit surface normal above the world point `world_xz`.
