@@ -36,6 +36,10 @@ const PLAYING_FPS: f64 = 12.0;
 /// What the widget says where it has no device to draw on (a headless path without one; in the
 /// web player the device is the page's WebGL2 one, without which no slide draws at all).
 const NO_GPU_NOTE: &str = "the live scene needs the window's GPU";
+/// Drawn in the slide's first frame: the scene's own first frame (the renderer, and the
+/// simulation stepped to `time_s`: 480 steps at 8 s, ~3 s in a browser on SwiftShader) is the
+/// next one, so paging shows the slide at once instead of freezing on the previous one.
+const PREPARING_NOTE: &str = "preparing the scene…";
 
 /// Everything a frame depends on: when it is unchanged the texture already holds the frame.
 #[derive(Debug, Clone, PartialEq)]
@@ -67,6 +71,8 @@ pub struct SceneWidget {
     /// the renderer's shader problems (`file:line:col: message`) as of the last save, read
     /// from its techniques' holders; the last good pipelines keep drawing
     shader_errors: Vec<String>,
+    /// a frame has shown the slide with [`PREPARING_NOTE`] where the picture will be
+    announced: bool,
 }
 
 fn debug_view(view: SceneView) -> DebugView {
@@ -160,6 +166,7 @@ impl SceneWidget {
             frames_rendered: 0,
             files_generation: 0,
             shader_errors: Vec::new(),
+            announced: false,
         }
     }
 
@@ -327,6 +334,18 @@ impl SlideWidget for SceneWidget {
             );
             return;
         };
+        if self.output.is_none() && !self.announced {
+            self.announced = true;
+            ui.painter_at(rect).text(
+                rect.center(),
+                egui::Align2::CENTER_CENTER,
+                PREPARING_NOTE,
+                egui::TextStyle::Body.resolve(ui.style()),
+                style::ink(ui),
+            );
+            ui.ctx().request_repaint();
+            return;
+        }
         // Drag orbits, as in scene mode (0.3° per point).
         if response.dragged() {
             let d = response.drag_delta();
