@@ -307,6 +307,17 @@ impl SceneWidget {
     }
 }
 
+/// One line of text where the picture goes (why there is none, or none yet).
+fn note_ui(ui: &egui::Ui, rect: egui::Rect, text: &str, color: egui::Color32) {
+    ui.painter_at(rect).text(
+        rect.center(),
+        egui::Align2::CENTER_CENTER,
+        text,
+        egui::TextStyle::Body.resolve(ui.style()),
+        color,
+    );
+}
+
 impl SlideWidget for SceneWidget {
     fn ui(&mut self, ui: &mut egui::Ui) {
         style::projector_text(ui);
@@ -315,34 +326,16 @@ impl SlideWidget for SceneWidget {
         let rect = egui::Rect::from_min_size(avail.min, egui::vec2(avail.width(), height));
         let response = ui.allocate_rect(rect, egui::Sense::drag());
         if let Some(why) = self.problem() {
-            ui.painter_at(rect).text(
-                rect.center(),
-                egui::Align2::CENTER_CENTER,
-                why,
-                egui::TextStyle::Body.resolve(ui.style()),
-                style::DIVERGED,
-            );
+            note_ui(ui, rect, &why, style::DIVERGED);
             return;
         }
         let Some(gpu) = SceneGpu::get(ui.ctx()) else {
-            ui.painter_at(rect).text(
-                rect.center(),
-                egui::Align2::CENTER_CENTER,
-                NO_GPU_NOTE,
-                egui::TextStyle::Body.resolve(ui.style()),
-                style::ink(ui),
-            );
+            note_ui(ui, rect, NO_GPU_NOTE, style::ink(ui));
             return;
         };
         if self.output.is_none() && !self.announced {
             self.announced = true;
-            ui.painter_at(rect).text(
-                rect.center(),
-                egui::Align2::CENTER_CENTER,
-                PREPARING_NOTE,
-                egui::TextStyle::Body.resolve(ui.style()),
-                style::ink(ui),
-            );
+            note_ui(ui, rect, PREPARING_NOTE, style::ink(ui));
             ui.ctx().request_repaint();
             return;
         }
