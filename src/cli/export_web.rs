@@ -251,7 +251,9 @@ fn index_html(title: &str) -> String {
         .replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;");
-    INDEX_HTML.replace("{title}", &title)
+    INDEX_HTML
+        .replace("{title}", &title)
+        .replace("{still}", STILL_FILE)
 }
 
 /// Classic scripts only (see the module's doc); the wasm is decoded and started here, and any
@@ -313,7 +315,7 @@ const INDEX_HTML: &str = r#"<!doctype html>
     if (still) {
       // under the note, in its flow
       document.getElementById("lectern-error").appendChild(still);
-      still.src = "scene-still.jpg";
+      still.src = "{still}";
       still.style.display = "block";
     }
     return;
