@@ -450,7 +450,8 @@ fn the_work_precision_widget_runs_the_stiff_solvers_on_a_stiff_problem() {
         lectern::widgets::WidgetSpec::WorkPrecision(s) => s.clone(),
         _ => unreachable!("the deck above has one WorkPrecision"),
     };
-    let curves = WorkPrecision::new(spec, Some(&deck_file)).compute();
+    let curves =
+        WorkPrecision::new(spec, lectern::widgets::MadeIn::deck(Some(&deck_file))).compute();
     for c in &curves {
         let stiff_at = c.stiff_at();
         match c.key.as_str() {

@@ -646,7 +646,10 @@ fn keystroke_to_plot_data_timing() {
             _ => None,
         })
         .unwrap();
-    let mut w = SlopeField::new(spec.clone(), Some(&bundled()));
+    let mut w = SlopeField::new(
+        spec.clone(),
+        lectern::widgets::MadeIn::deck(Some(&bundled())),
+    );
     w.refresh();
     let stats = |mut v: Vec<f64>| {
         v.sort_by(f64::total_cmp);
@@ -880,4 +883,98 @@ fn a_problem_file_reloads_by_the_watchers_path_however_the_deck_names_it() {
     let ode = state.widget_at(&[0]).unwrap().ode().unwrap();
     let error = ode.load_error().expect("the broken save is reported");
     assert!(error.contains("decay.ron:3:"), "{error}");
+}
+
+/// Two slides' widgets reading one problem file share its one holder: the file is read once
+/// per save (not once per widget), a broken save leaves both on the last good equation with
+/// the file's error, a widget made again while the file is broken (its spec changed) starts
+/// from that last good equation too, and the fixed file reaches both.
+#[test]
+fn the_widgets_of_every_slide_share_one_holder_per_problem_file() {
+    use lectern::app::DeckState;
+    use lectern::widgets::ParamSnapshot;
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir_all(dir.path().join("slides/problems")).unwrap();
+    let problem = dir.path().join("slides/problems/decay.ron");
+    let original = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("slides/problems/decay.ron"),
+    )
+    .unwrap();
+    std::fs::write(&problem, &original).unwrap();
+    let deck_path = dir.path().join("slides/talk.ron");
+    let slide = |id: &str, h: &str| {
+        format!(
+            "(id: \"{id}\", title: \"{id}\", body: [Widget(Neptune((ode: File(\"problems/decay.ron\"), h: {h}, t_end: 4.0)))])"
+        )
+    };
+    let write_deck = |h: &str| {
+        let text = format!(
+            "(title: \"t\", slides: [{}, {}])",
+            slide("a", "0.3"),
+            slide("b", h)
+        );
+        std::fs::write(&deck_path, text).unwrap();
+        load_deck(&deck_path).unwrap()
+    };
+    let deck = write_deck("0.3");
+    let mut states = DeckState::default();
+    for s in &deck.slides {
+        let state = states.slide(s);
+        state.set_deck_path(Some(&deck_path));
+        state.ensure_widgets(s);
+    }
+    assert_eq!(
+        states.problem_files().len(),
+        1,
+        "one holder for the one file"
+    );
+    let lambda =
+        |states: &mut DeckState, s: usize| states.slide(&deck.slides[s]).param(&[0], "lambda");
+    let error = |states: &mut DeckState, s: usize| {
+        let state = states.slide(&deck.slides[s]);
+        let ode = state.widget_at(&[0]).unwrap().ode().unwrap();
+        ode.load_error().map(str::to_owned)
+    };
+
+    let edited = original.replace("{\"lambda\": -5.0}", "{\"lambda\": -2.0}");
+    std::fs::write(&problem, &edited).unwrap();
+    states.reload_problem_files(std::slice::from_ref(&problem));
+    assert_eq!(lambda(&mut states, 0), Some(ParamSnapshot::F64(-2.0)));
+    assert_eq!(lambda(&mut states, 1), Some(ParamSnapshot::F64(-2.0)));
+    let generation = states.problem_files().get(&problem).unwrap().generation();
+
+    // broken: both keep λ = −2 and say where the file is wrong
+    std::fs::write(&problem, edited.replacen('(', "(\n  oops,", 1)).unwrap();
+    states.reload_problem_files(std::slice::from_ref(&problem));
+    for s in 0..2 {
+        assert_eq!(lambda(&mut states, s), Some(ParamSnapshot::F64(-2.0)));
+        let e = error(&mut states, s).expect("the broken save is reported");
+        assert!(e.contains("decay.ron:3:"), "{e}");
+    }
+    // the deck changes slide b's widget while the file is broken: made again from the holder
+    let deck = write_deck("0.2");
+    let state = states.slide(&deck.slides[1]);
+    state.ensure_widgets(&deck.slides[1]);
+    assert_eq!(state.param(&[0], "lambda"), Some(ParamSnapshot::F64(-2.0)));
+    assert!(error(&mut states, 1).is_some_and(|e| e.contains("decay.ron:3:")));
+    // the same broken bytes again are no new version; then fixed, both follow
+    states.reload_problem_files(std::slice::from_ref(&problem));
+    assert_eq!(
+        states.problem_files().get(&problem).unwrap().generation(),
+        generation
+    );
+    std::fs::write(
+        &problem,
+        original.replace("{\"lambda\": -5.0}", "{\"lambda\": -1.0}"),
+    )
+    .unwrap();
+    states.reload_problem_files(std::slice::from_ref(&problem));
+    for s in 0..2 {
+        assert_eq!(lambda(&mut states, s), Some(ParamSnapshot::F64(-1.0)));
+        assert_eq!(error(&mut states, s), None);
+    }
+    assert_eq!(
+        states.problem_files().get(&problem).unwrap().generation(),
+        generation + 1
+    );
 }

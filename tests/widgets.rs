@@ -79,7 +79,7 @@ fn a_dragged_start_point_is_solved_from_in_the_frame_that_moves_it() {
     let WidgetSpec::SlopeField(spec) = spec_of(SLOPE_1D) else {
         unreachable!()
     };
-    let w = SlopeField::new(spec, Some(deck_path()));
+    let w = SlopeField::new(spec, lectern::widgets::MadeIn::deck(Some(deck_path())));
     let mut h = Harness::builder()
         .with_size(SIZE)
         .with_context_setup(|ctx| lectern::math::install_egui_fallback_fonts(ctx))
@@ -300,7 +300,8 @@ fn work_precision_slide_shows_high_order_pairs_overtake_rk4_at_tight_errors() {
             _ => None,
         })
         .expect("its widget");
-    let curves = WorkPrecision::new(spec, Some(deck_path())).compute();
+    let curves =
+        WorkPrecision::new(spec, lectern::widgets::MadeIn::deck(Some(deck_path()))).compute();
     let curve = |k: &str| -> &Curve {
         curves
             .iter()
@@ -605,7 +606,10 @@ fn work_precision_study_time() {
         };
         let mut secs: Vec<f64> = (0..7)
             .map(|_| {
-                let mut w = WorkPrecision::new(spec.clone(), Some(deck_path()));
+                let mut w = WorkPrecision::new(
+                    spec.clone(),
+                    lectern::widgets::MadeIn::deck(Some(deck_path())),
+                );
                 let t = Instant::now();
                 let curves = w.compute();
                 assert!(!curves.is_empty());

@@ -3,12 +3,14 @@
 //! and what drawing a slide gave back. A leaf: the slide renderer, its blocks and the ink all
 //! use it, and it uses none of them.
 
+use std::cell::RefCell;
 use std::collections::HashMap;
+use std::rc::Rc;
 
 use egui::Rect;
 
 use crate::deck::{Deck, Slide};
-use crate::widgets::{ParamSnapshot, SlideWidget, WidgetSpec, params};
+use crate::widgets::{MadeIn, ParamSnapshot, ProblemFiles, SlideWidget, WidgetSpec, params};
 
 /// The live state of one slide: its widgets, created from their specs the first time the slide
 /// is drawn and kept while presenting (so a dragged slider stays where the lecturer left it).
@@ -24,6 +26,8 @@ pub struct SlideState {
     /// The deck file, remembered from the last draw: widgets made before the slide is drawn
     /// (bookmarks, restores) resolve their files (problems, tableaux) against it too.
     deck_path: Option<std::path::PathBuf>,
+    /// The problem files' one holder, shared by every slide of the deck ([`DeckState`]).
+    problem_files: Rc<RefCell<ProblemFiles>>,
 }
 
 pub(crate) struct WidgetSlot {
@@ -40,13 +44,21 @@ impl SlideState {
         spec: &WidgetSpec,
         deck_path: Option<&std::path::Path>,
     ) -> &mut dyn SlideWidget {
+        if let Some(source) = spec.ode() {
+            self.problem_files.borrow_mut().open(source, deck_path);
+        }
+        let problems = self.problem_files.borrow();
+        let at = MadeIn {
+            deck_path,
+            problems: Some(&problems),
+        };
         let slot = self
             .widgets
             .entry(path.to_vec())
             .and_modify(|slot| {
                 if slot.spec != *spec {
-                    let mut widget = spec.instantiate_in(deck_path);
-                    let old_file = file_values(&slot.spec, deck_path);
+                    let mut widget = spec.instantiate(at);
+                    let old_file = file_values(&slot.spec, at);
                     carry_tweaks(&old_file, slot.widget.as_mut(), widget.as_mut());
                     *slot = WidgetSlot {
                         spec: spec.clone(),
@@ -56,29 +68,51 @@ impl SlideState {
             })
             .or_insert_with(|| WidgetSlot {
                 spec: spec.clone(),
-                widget: spec.instantiate_in(deck_path),
+                widget: spec.instantiate(at),
             });
         slot.widget.as_mut()
     }
 
-    /// After problem files changed on disk: widgets whose equation comes from one of `changed`
-    /// (by [`crate::reload::same_file`]'s rule) are made again (their tweaks carried over; a
-    /// broken file keeps the last good equation). A file caught empty mid-save is waited for,
-    /// as every reloaded file is ([`crate::reload::Settled::NotReady`]), not reported.
+    /// After files changed on disk: the problem files among them are re-read (once each, by the
+    /// deck's holder) and this slide's widgets follow ([`DeckState::reload_problem_files`] does
+    /// it for every slide).
     pub fn reload_problem_files(&mut self, changed: &[std::path::PathBuf]) {
-        use crate::reload::{Settled, any_is, file_key, read_settled};
+        let outcomes = self.problem_files.borrow_mut().on_changes(changed);
+        self.apply_problem_files(&outcomes);
+    }
+
+    /// After problem files changed on disk and their holder re-read them (`outcomes`, by file
+    /// key): widgets whose equation comes from a file that loaded again are made again from it
+    /// (their tweaks carried over); those whose file's save is broken keep their last good
+    /// equation and show the file's error.
+    fn apply_problem_files(&mut self, outcomes: &crate::widgets::problem_files::FileOutcomes) {
+        use crate::reload::{Reloaded, file_key};
         let deck_path = self.deck_path.clone();
+        let problems = self.problem_files.clone();
+        let problems = problems.borrow();
+        let at = MadeIn {
+            deck_path: deck_path.as_deref(),
+            problems: Some(&problems),
+        };
         for slot in self.widgets.values_mut() {
-            let file = (slot.widget.ode()).and_then(|o| o.file().map(std::path::Path::to_path_buf));
-            let Some(file) = file.filter(|f| any_is(changed, &file_key(f))) else {
+            let file = (slot.widget.ode()).and_then(|o| o.file().map(file_key));
+            let Some((_, outcome)) = file.and_then(|f| outcomes.iter().find(|(key, _)| *key == f))
+            else {
                 continue;
             };
-            if read_settled(&file) == Settled::NotReady {
-                continue;
+            match outcome {
+                Reloaded::Updated => {}
+                Reloaded::Failed(d) => {
+                    if let Some(ode) = slot.widget.ode() {
+                        ode.set_file_error(Some(d.to_string()));
+                    }
+                    continue;
+                }
+                Reloaded::Untouched | Reloaded::Waiting => continue,
             }
-            // the file's values as they were before this save (re-making the old spec would
-            // read the new file): a value the file changed is not a tweak to keep
-            let mut old_file = file_values(&slot.spec, deck_path.as_deref());
+            // the file's values as they were before this save (the old spec made now would
+            // read the new version): a value the file changed is not a tweak to keep
+            let mut old_file = file_values(&slot.spec, at);
             if let Some(def) = slot.widget.ode().and_then(|o| o.file_def()) {
                 for (name, value) in &def.params {
                     match old_file.iter_mut().find(|(id, _)| id == name) {
@@ -87,7 +121,7 @@ impl SlideState {
                     }
                 }
             }
-            let mut widget = slot.spec.instantiate_in(deck_path.as_deref());
+            let mut widget = slot.spec.instantiate(at);
             carry_tweaks(&old_file, slot.widget.as_mut(), widget.as_mut());
             slot.widget = widget;
         }
@@ -118,8 +152,13 @@ impl SlideState {
         };
         let fresh = !matches!(self.previews.get(path), Some((d, _)) if *d == def);
         if fresh {
-            let mut widget = live.spec.instantiate_in(deck_path.as_deref());
-            let old_file = file_values(&live.spec, deck_path.as_deref());
+            let problems = self.problem_files.borrow();
+            let at = MadeIn {
+                deck_path: deck_path.as_deref(),
+                problems: Some(&problems),
+            };
+            let mut widget = live.spec.instantiate(at);
+            let old_file = file_values(&live.spec, at);
             carry_tweaks(&old_file, live.widget.as_mut(), widget.as_mut());
             widget.ode()?.show_def(def.clone());
             let slot = WidgetSlot {
@@ -224,9 +263,13 @@ impl SlideState {
     pub fn tweaked(&mut self) -> Vec<(Vec<usize>, String, ParamSnapshot)> {
         let mut out = Vec::new();
         let deck = self.deck_path.clone();
+        let problems = self.problem_files.borrow();
+        let at = MadeIn {
+            deck_path: deck.as_deref(),
+            problems: Some(&problems),
+        };
         for (path, slot) in &mut self.widgets {
-            let file: Vec<(String, ParamSnapshot)> =
-                params::snapshot(slot.spec.instantiate_in(deck.as_deref()).as_mut());
+            let file = file_values(&slot.spec, at);
             for (id, v) in params::snapshot(slot.widget.as_mut()) {
                 if file.iter().any(|(fid, fv)| *fid == id && *fv != v) {
                     out.push((path.clone(), id, v));
@@ -265,11 +308,8 @@ impl SlideState {
 pub type TweakSnapshot = Vec<(Vec<usize>, Vec<(String, ParamSnapshot)>)>;
 
 /// The values the files give a widget made from `spec` (its "untweaked" values).
-fn file_values(
-    spec: &WidgetSpec,
-    deck_path: Option<&std::path::Path>,
-) -> Vec<(String, ParamSnapshot)> {
-    params::snapshot(spec.instantiate_in(deck_path).as_mut())
+fn file_values(spec: &WidgetSpec, at: MadeIn<'_>) -> Vec<(String, ParamSnapshot)> {
+    params::snapshot(spec.instantiate(at).as_mut())
 }
 
 /// After a reload changed a widget's spec (or a file it reads): `old_file` is what the files
@@ -301,11 +341,19 @@ fn carry_tweaks(
 #[derive(Default)]
 pub struct DeckState {
     slides: HashMap<String, SlideState>,
+    /// The problem files every slide's widgets read, each held once.
+    problems: Rc<RefCell<ProblemFiles>>,
 }
 
 impl DeckState {
     pub fn slide(&mut self, slide: &Slide) -> &mut SlideState {
-        self.slides.entry(slide.key().to_owned()).or_default()
+        let problems = &self.problems;
+        self.slides
+            .entry(slide.key().to_owned())
+            .or_insert_with(|| SlideState {
+                problem_files: problems.clone(),
+                ..SlideState::default()
+            })
     }
 
     /// The state of `slide` if it was ever drawn or tweaked.
@@ -313,11 +361,21 @@ impl DeckState {
         self.slides.get_mut(slide.key())
     }
 
-    /// Problem files changed on disk: the widgets that read them re-read them.
+    /// Files changed on disk: each problem file among them is re-read once, and the widgets
+    /// made from it follow ([`SlideState::apply_problem_files`]).
     pub fn reload_problem_files(&mut self, changed: &[std::path::PathBuf]) {
-        for state in self.slides.values_mut() {
-            state.reload_problem_files(changed);
+        let outcomes = self.problems.borrow_mut().on_changes(changed);
+        if outcomes.is_empty() {
+            return;
         }
+        for state in self.slides.values_mut() {
+            state.apply_problem_files(&outcomes);
+        }
+    }
+
+    /// The problem files held while presenting (tests).
+    pub fn problem_files(&self) -> std::cell::Ref<'_, ProblemFiles> {
+        self.problems.borrow()
     }
 
     /// After a reload: forget the states of slides that no longer exist. Widgets whose spec

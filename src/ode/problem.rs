@@ -376,6 +376,22 @@ pub fn read_def(path: &Path) -> Result<(String, ProblemDef), Diagnostic> {
     Ok((text, def))
 }
 
+/// A problem file's text as its definition (named after the file when it gives no name) and
+/// compiled; a fault at its line and column in the file.
+pub fn parse_file(text: &str, path: &Path) -> Result<(ProblemDef, Problem), Diagnostic> {
+    let mut def = parse_def(text, path)?;
+    if def.name.is_empty() {
+        def.name = path
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default();
+    }
+    let problem = def
+        .compile(path)
+        .map_err(|e| diagnostic_at(text, "", path, &e))?;
+    Ok((def, problem))
+}
+
 fn parse_def(text: &str, path: &Path) -> Result<ProblemDef, Diagnostic> {
     if text.trim().is_empty() {
         return Err(Diagnostic::whole_file(path, "problem file is empty"));
@@ -435,16 +451,7 @@ impl Problem {
 
     /// Parses problem text; `path` names the file in errors.
     pub fn parse(text: &str, path: impl AsRef<Path>) -> Result<Self, Diagnostic> {
-        let path = path.as_ref();
-        let mut def = parse_def(text, path)?;
-        if def.name.is_empty() {
-            def.name = path
-                .file_stem()
-                .map(|s| s.to_string_lossy().into_owned())
-                .unwrap_or_default();
-        }
-        def.compile(path)
-            .map_err(|e| diagnostic_at(text, "", path, &e))
+        parse_file(text, path.as_ref()).map(|(_, problem)| problem)
     }
 
     /// The exact solution at time t, when the file gives one. Its expressions may use t and

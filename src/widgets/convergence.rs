@@ -6,9 +6,8 @@
 //! is run here with fixed steps of its propagating formula, so its line shows that formula's
 //! order (5 … 9); the legend says "fixed h".
 
+use super::problem_files::MadeIn;
 use egui_plot::{Line, Plot, PlotPoint, Points};
-
-use std::path::Path as FsPath;
 
 use super::labels;
 use super::live_ode::LiveOde;
@@ -125,9 +124,10 @@ pub struct Convergence {
 }
 
 impl Convergence {
-    pub fn new(spec: ConvergenceSpec, deck_path: Option<&FsPath>) -> Self {
+    pub fn new(spec: ConvergenceSpec, at: MadeIn<'_>) -> Self {
+        let deck_path = at.deck_path;
         Self {
-            ode: LiveOde::new(&spec.ode, deck_path),
+            ode: LiveOde::new(&spec.ode, at),
             methods: MethodSet::new(&spec.methods, deck_path),
             initial: spec.clone(),
             spec,
@@ -409,6 +409,7 @@ impl SlideWidget for Convergence {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::path::Path as FsPath;
 
     #[test]
     fn measured_slopes_are_the_orders_and_the_typo_drops_to_one() {
@@ -418,7 +419,7 @@ mod tests {
              methods: [Euler, Midpoint, Rk4, Tableau(\"tableaux/rk4-typo.ron\")])",
         )
         .unwrap();
-        let c = Convergence::new(spec, Some(deck)).compute();
+        let c = Convergence::new(spec, crate::widgets::MadeIn::deck(Some(deck))).compute();
         let slope = |k: &str| c.iter().find(|e| e.0 == k).unwrap().4.unwrap();
         for (k, want, tol) in [
             ("euler", 1.0, 0.15),
@@ -438,7 +439,7 @@ mod tests {
              methods: [Euler, Rk4, Dop853, Vern9])",
         )
         .unwrap();
-        let mut c = Convergence::new(spec, Some(deck));
+        let mut c = Convergence::new(spec, crate::widgets::MadeIn::deck(Some(deck)));
         let whole = c.compute();
         let mut frames = 1;
         while !c.advance() {
@@ -460,7 +461,7 @@ mod tests {
              methods: [Rk4, Tsit5, Vern6, Dop853, Vern9])",
         )
         .unwrap();
-        let c = Convergence::new(spec, Some(deck)).compute();
+        let c = Convergence::new(spec, crate::widgets::MadeIn::deck(Some(deck))).compute();
         let row = |k: &str| c.iter().find(|e| e.0 == k).unwrap();
         assert_eq!(row("dop853").1, "DOP853 (fixed h)");
         assert_eq!((row("dop853").5, row("rk4").5), (Some(8), None));

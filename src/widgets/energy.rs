@@ -6,7 +6,7 @@
 //! (radau5, rodas5p) takes steps the slow motion allows, not the stiff spring (Baraff & Witkin
 //! 1998, "Large steps in cloth simulation").
 
-use std::path::Path as FsPath;
+use super::problem_files::MadeIn;
 
 use egui_plot::{Line, PlotPoint, Points};
 
@@ -71,9 +71,10 @@ pub fn energy_at(e: &Program, t: f64, x: &[f64]) -> f64 {
 }
 
 impl Energy {
-    pub fn new(spec: EnergySpec, deck_path: Option<&FsPath>) -> Self {
+    pub fn new(spec: EnergySpec, at: MadeIn<'_>) -> Self {
+        let deck_path = at.deck_path;
         Self {
-            ode: LiveOde::new(&spec.ode, deck_path),
+            ode: LiveOde::new(&spec.ode, at),
             methods: MethodSet::new(&spec.methods, deck_path),
             initial: spec.clone(),
             spec,
@@ -394,11 +395,15 @@ impl SlideWidget for Energy {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::path::Path as FsPath;
 
     fn widget() -> Energy {
         let deck = FsPath::new(concat!(env!("CARGO_MANIFEST_DIR"), "/slides/lecture.ron"));
         let spec = r#"(ode: File("problems/stiff-spring.ron"), energy: "0.5*(v1*v1 + v2*v2) + 0.5*x1*x1 + 0.5*k*(x2 - x1)^2", methods: [Rk4, ImplicitMidpoint, Radau5])"#;
-        Energy::new(ron::from_str(spec).unwrap(), Some(deck))
+        Energy::new(
+            ron::from_str(spec).unwrap(),
+            crate::widgets::MadeIn::deck(Some(deck)),
+        )
     }
 
     #[test]

@@ -9,6 +9,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use super::params::{Param, WriteTo};
+use super::problem_files::MadeIn;
 use crate::deck::widgets::{OdeError, OdeSource};
 use crate::ode::problem::{DefPos, Problem, ProblemDef};
 
@@ -57,7 +58,9 @@ pub struct LiveOde {
 }
 
 impl LiveOde {
-    pub fn new(source: &OdeSource, deck_path: Option<&Path>) -> Self {
+    /// The equation of `source`, from its problem file's holder while presenting ([`MadeIn`]):
+    /// a file whose newest save is broken gives its last good equation and the error.
+    pub fn new(source: &OdeSource, at: MadeIn<'_>) -> Self {
         let mut live = Self {
             source: source.clone(),
             file: None,
@@ -71,7 +74,9 @@ impl LiveOde {
             revision: 0,
             dropped_exact: None,
         };
-        match source.load(deck_path) {
+        let (loaded, file_error) = at.load(source);
+        live.load_error = file_error;
+        match loaded {
             Ok(loaded) => {
                 live.file = loaded.file;
                 live.compiled_params = loaded.def.params.clone();
@@ -123,6 +128,12 @@ impl LiveOde {
 
     fn named(&self) -> PathBuf {
         self.file.clone().unwrap_or_default()
+    }
+
+    /// The problem file's newest save is broken (`Some`: its error, shown while the last good
+    /// equation stays) or loaded again (`None`).
+    pub fn set_file_error(&mut self, error: Option<String>) {
+        self.load_error = error;
     }
 
     /// Why the source did not load (the widget shows it; the last good equation, if any, stays).
@@ -553,7 +564,7 @@ mod tests {
 
     #[test]
     fn typing_replaces_the_equation_only_when_it_compiles() {
-        let mut live = LiveOde::new(&forced(), None);
+        let mut live = LiveOde::new(&forced(), MadeIn::default());
         let r0 = live.revision();
         assert!(live.set_expr(ExprSlot::Rhs(0), "-2*x + cos(3*t)"));
         assert!(live.revision() > r0);
@@ -584,7 +595,7 @@ mod tests {
             r#"Inline((vars: ["y"], rhs: ["lambda*y"], params: {"lambda": -5.0}, initial: [1.0]))"#,
         )
         .unwrap();
-        let mut live = LiveOde::new(&src, None);
+        let mut live = LiveOde::new(&src, MadeIn::default());
         let r0 = live.revision();
         {
             let mut ps = live.params();
@@ -611,7 +622,7 @@ mod tests {
             r#"Inline((vars: ["x"], rhs: ["-k*x"], params: {"k": 1.0, "ω": 2.0}, initial: [1.0]))"#,
         )
         .unwrap();
-        let mut live = LiveOde::new(&src, None);
+        let mut live = LiveOde::new(&src, MadeIn::default());
         let unused = |live: &mut LiveOde| -> Vec<(String, bool)> {
             live.params()
                 .iter()
@@ -634,12 +645,12 @@ mod tests {
             r#"Inline((vars: ["x"], rhs: ["-x"], initial: [1.0], exact: Some(["exp(-(t - t0))*x"])))"#,
         )
         .unwrap();
-        let mut old = LiveOde::new(&with_exact, None);
+        let mut old = LiveOde::new(&with_exact, MadeIn::default());
         assert!(old.set_draft(ExprSlot::Rhs(0), "-2*x"));
         assert!(old.commit());
         assert!(old.drops_files_exact() && old.dropped_exact().is_some());
         // the file reloads (unchanged here): the typed equation is carried, without the exact
-        let mut next = LiveOde::new(&with_exact, None);
+        let mut next = LiveOde::new(&with_exact, MadeIn::default());
         next.carry_from(&old);
         assert_eq!(next.def().unwrap().rhs, vec!["-2*x".to_string()]);
         assert_eq!(
@@ -660,10 +671,10 @@ mod tests {
 
     #[test]
     fn a_broken_reload_keeps_the_last_good_equation() {
-        let good = LiveOde::new(&forced(), None);
+        let good = LiveOde::new(&forced(), MadeIn::default());
         let bad: OdeSource =
             ron::from_str(r#"Inline((vars: ["x"], rhs: ["cos(t) - q"], initial: [1.5]))"#).unwrap();
-        let mut next = LiveOde::new(&bad, None);
+        let mut next = LiveOde::new(&bad, MadeIn::default());
         assert!(next.load_error().unwrap().contains("unknown name"));
         next.carry_from(&good);
         assert!(next.problem().is_some());

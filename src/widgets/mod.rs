@@ -62,6 +62,7 @@ pub mod methods;
 pub mod neptune;
 pub mod parallel_transport;
 pub mod params;
+pub mod problem_files;
 pub mod rigid_body;
 pub mod scene;
 pub mod simulation_loop;
@@ -76,6 +77,7 @@ pub mod work_precision;
 pub use crate::deck::widgets::{MethodRef, WidgetSpec};
 pub use live_ode::{ExprSlot, LiveOde};
 pub use params::{Param, ParamSnapshot, ParamValue, WriteTo};
+pub use problem_files::{MadeIn, ProblemFiles};
 
 /// A widget's live state; created from its spec, kept while the slide is on screen.
 pub trait SlideWidget: Send {
@@ -177,22 +179,23 @@ impl WidgetSpec {
     /// The widget, its files (problem and tableau files) resolved relative to the deck at
     /// `deck_path` (or the current folder).
     pub fn instantiate_in(&self, deck_path: Option<&std::path::Path>) -> Box<dyn SlideWidget> {
+        self.instantiate(MadeIn::deck(deck_path))
+    }
+
+    /// The widget, made where `at` says (while presenting: from the problem files' holder).
+    pub fn instantiate(&self, at: MadeIn<'_>) -> Box<dyn SlideWidget> {
+        let deck_path = at.deck_path;
         match self {
-            WidgetSpec::SlopeField(s) => {
-                Box::new(slope_field::SlopeField::new(s.clone(), deck_path))
+            WidgetSpec::SlopeField(s) => Box::new(slope_field::SlopeField::new(s.clone(), at)),
+            WidgetSpec::StepConstruction(s) => {
+                Box::new(step_construction::StepConstruction::new(s.clone(), at))
             }
-            WidgetSpec::StepConstruction(s) => Box::new(step_construction::StepConstruction::new(
-                s.clone(),
-                deck_path,
-            )),
-            WidgetSpec::Spiral(s) => Box::new(spiral::Spiral::new(s.clone(), deck_path)),
-            WidgetSpec::Neptune(s) => Box::new(neptune::Neptune::new(s.clone(), deck_path)),
+            WidgetSpec::Spiral(s) => Box::new(spiral::Spiral::new(s.clone(), at)),
+            WidgetSpec::Neptune(s) => Box::new(neptune::Neptune::new(s.clone(), at)),
             WidgetSpec::Taylor(s) => Box::new(taylor::Taylor::new(s.clone())),
-            WidgetSpec::Convergence(s) => {
-                Box::new(convergence::Convergence::new(s.clone(), deck_path))
-            }
+            WidgetSpec::Convergence(s) => Box::new(convergence::Convergence::new(s.clone(), at)),
             WidgetSpec::WorkPrecision(s) => {
-                Box::new(work_precision::WorkPrecision::new(s.clone(), deck_path))
+                Box::new(work_precision::WorkPrecision::new(s.clone(), at))
             }
             WidgetSpec::Stability(s) => {
                 Box::new(stability::Stability::new_in(s.clone(), deck_path))
@@ -209,7 +212,7 @@ impl WidgetSpec {
                 s.clone(),
                 deck_path.and_then(std::path::Path::parent),
             )),
-            WidgetSpec::Energy(s) => Box::new(energy::Energy::new(s.clone(), deck_path)),
+            WidgetSpec::Energy(s) => Box::new(energy::Energy::new(s.clone(), at)),
         }
     }
 }

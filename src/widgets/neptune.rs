@@ -4,9 +4,8 @@
 //! crash. The printed limits use λ, the eigenvalue of the equation's Jacobian at the start with
 //! the largest modulus (exact for y' = λy and the oscillator's ±i).
 
+use super::problem_files::MadeIn;
 use egui_plot::{Line, MarkerShape, PlotPoint, Points};
-
-use std::path::Path as FsPath;
 
 use super::labels;
 use super::live_ode::LiveOde;
@@ -161,9 +160,10 @@ pub fn dominant_eigenvalue(p: &Problem, t: f64, x: &[f64]) -> Option<C> {
 }
 
 impl Neptune {
-    pub fn new(spec: NeptuneSpec, deck_path: Option<&FsPath>) -> Self {
+    pub fn new(spec: NeptuneSpec, at: MadeIn<'_>) -> Self {
+        let deck_path = at.deck_path;
         Self {
-            ode: LiveOde::new(&spec.ode, deck_path),
+            ode: LiveOde::new(&spec.ode, at),
             methods: MethodSet::new(&spec.methods, deck_path),
             initial: spec.clone(),
             spec,
@@ -367,11 +367,15 @@ pub fn lambda_text(l: C) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::path::Path as FsPath;
 
     fn widget(h: f64) -> Neptune {
         let deck = FsPath::new(concat!(env!("CARGO_MANIFEST_DIR"), "/slides/lecture.ron"));
         let spec = format!("(ode: File(\"problems/decay.ron\"), h: {h}, t_end: 30.0)");
-        Neptune::new(ron::from_str(&spec).unwrap(), Some(deck))
+        Neptune::new(
+            ron::from_str(&spec).unwrap(),
+            crate::widgets::MadeIn::deck(Some(deck)),
+        )
     }
 
     #[test]

@@ -4,7 +4,7 @@
 //! and its expressions by typing (presenter side); the global error of each method at the end
 //! of the interval is printed live.
 
-use std::path::Path as FsPath;
+use super::problem_files::MadeIn;
 
 use egui_plot::{Arrows, Line, PlotPoint, PlotPoints, Points};
 
@@ -78,8 +78,9 @@ fn plane(spec: &SlopeFieldSpec, p: &Problem) -> Option<(usize, usize)> {
 }
 
 impl SlopeField {
-    pub fn new(spec: SlopeFieldSpec, deck_path: Option<&FsPath>) -> Self {
-        let mut ode = LiveOde::new(&spec.ode, deck_path);
+    pub fn new(spec: SlopeFieldSpec, at: MadeIn<'_>) -> Self {
+        let deck_path = at.deck_path;
+        let mut ode = LiveOde::new(&spec.ode, at);
         let methods = MethodSet::new(&spec.methods, deck_path);
         let mut spec = spec;
         if let Some(p) = ode.problem() {
@@ -582,13 +583,17 @@ pub fn exact_series(p: &Problem, t0: f64, x0: &[f64], reference: Path) -> (Strin
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::path::Path as FsPath;
 
     fn deck() -> &'static FsPath {
         FsPath::new(concat!(env!("CARGO_MANIFEST_DIR"), "/slides/lecture.ron"))
     }
 
     fn widget(ron: &str) -> SlopeField {
-        SlopeField::new(ron::from_str(ron).unwrap(), Some(deck()))
+        SlopeField::new(
+            ron::from_str(ron).unwrap(),
+            crate::widgets::MadeIn::deck(Some(deck())),
+        )
     }
 
     fn forced(h: f64) -> SlopeField {

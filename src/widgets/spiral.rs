@@ -4,9 +4,8 @@
 //! two or more variables can be drawn (its first two, one panel per method), with its exact
 //! (or reference) solution dashed over one revolution.
 
+use super::problem_files::MadeIn;
 use egui_plot::{Line, PlotPoints, Points};
-
-use std::path::Path as FsPath;
 
 use super::live_ode::LiveOde;
 use super::methods::{
@@ -55,9 +54,10 @@ pub struct Spiral {
 }
 
 impl Spiral {
-    pub fn new(spec: SpiralSpec, deck_path: Option<&FsPath>) -> Self {
+    pub fn new(spec: SpiralSpec, at: MadeIn<'_>) -> Self {
+        let deck_path = at.deck_path;
         Self {
-            ode: LiveOde::new(&spec.ode, deck_path),
+            ode: LiveOde::new(&spec.ode, at),
             methods: MethodSet::new(&spec.methods, deck_path),
             initial: spec.clone(),
             spec,
@@ -297,13 +297,14 @@ impl SlideWidget for Spiral {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::path::Path as FsPath;
 
     #[test]
     fn euler_radius_per_revolution_matches_theory() {
         let deck = FsPath::new(concat!(env!("CARGO_MANIFEST_DIR"), "/slides/lecture.ron"));
         let spec =
             ron::from_str("(ode: File(\"problems/circle.ron\"), h: 0.1, turns: 2.0)").unwrap();
-        let mut s = Spiral::new(spec, Some(deck));
+        let mut s = Spiral::new(spec, crate::widgets::MadeIn::deck(Some(deck)));
         let paths = s.paths();
         let revs = &paths[0].2;
         let n1 = (std::f64::consts::TAU / 0.1).round();

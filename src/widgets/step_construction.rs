@@ -2,9 +2,8 @@
 //! the midpoint, then the full step with it; RK4's k1..k4 as arrows, then their weighted
 //! combination. `[` and `]` step backwards and forwards through the construction.
 
+use super::problem_files::MadeIn;
 use egui_plot::{Arrows, Line, PlotPoint, PlotPoints, Points};
-
-use std::path::Path as FsPath;
 
 use super::controls;
 use super::labels;
@@ -158,8 +157,8 @@ pub struct StepConstruction {
 }
 
 impl StepConstruction {
-    pub fn new(mut spec: StepSpec, deck_path: Option<&FsPath>) -> Self {
-        let mut ode = LiveOde::new(&spec.ode, deck_path);
+    pub fn new(mut spec: StepSpec, at: MadeIn<'_>) -> Self {
+        let mut ode = LiveOde::new(&spec.ode, at);
         if spec.start.is_none()
             && let Some(p) = ode.problem()
         {

@@ -9,12 +9,11 @@
 //! `Radau5`) sweep their tolerance the same way, and DOPRI5 and DOP853 stop where their
 //! stiffness test fires, shown as "stiff: stopped at t = …" rather than grinding for minutes.
 
+use super::problem_files::MadeIn;
 use std::sync::atomic::Ordering;
 use std::sync::mpsc::{Receiver, channel};
 
 use egui_plot::{Line, MarkerShape, Points};
-
-use std::path::Path as FsPath;
 
 use super::convergence::{log_axes_plot, pow10_label, truth};
 use super::live_ode::LiveOde;
@@ -67,9 +66,10 @@ pub struct WorkPrecision {
 }
 
 impl WorkPrecision {
-    pub fn new(spec: WorkPrecisionSpec, deck_path: Option<&FsPath>) -> Self {
+    pub fn new(spec: WorkPrecisionSpec, at: MadeIn<'_>) -> Self {
+        let deck_path = at.deck_path;
         Self {
-            ode: LiveOde::new(&spec.ode, deck_path),
+            ode: LiveOde::new(&spec.ode, at),
             methods: MethodSet::new(&spec.methods, deck_path),
             initial: spec.clone(),
             spec,
@@ -403,7 +403,10 @@ mod tests {
     #[test]
     fn background_study_delivers_without_blocking_the_frame() {
         let ctx = egui::Context::default();
-        let mut w = WorkPrecision::new(spec(12, ", methods: [Euler, Rk4, Dop853]"), Some(deck()));
+        let mut w = WorkPrecision::new(
+            spec(12, ", methods: [Euler, Rk4, Dop853]"),
+            crate::widgets::MadeIn::deck(Some(deck())),
+        );
         w.start(&ctx);
         assert!(w.busy());
         while w.busy() {

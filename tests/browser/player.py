@@ -366,11 +366,16 @@ def check_page(args, url, size, figures, tag):
         key(d, "+")
         wait_for(d, "return window.lectern.plotData() !== %s" % json.dumps(json.dumps(before)), 10)
         if tag == "file":
-            time_keys(d, args, figures, tag)
             walk_all_slides(d, args, figures, tag)
             spiral_off(d, args, figures, tag)
+            # reloads the page: the timings below start with the notes closed, as a student
+            # pages through the deck (the typing check above left them open)
             work_precision_link(d, args, figures, tag, url)
+            time_keys(d, args, figures, tag)
             time_drag(d, args, figures, tag)
+            # and with the self-study notes open under the slide (`N`): a heavier frame
+            key(d, "n")
+            time_keys(d, args, figures, tag + "_notes_open")
         errors = severe(d)
         assert not errors, "console errors: %r" % errors
     finally:

@@ -75,49 +75,57 @@ pub fn resolve_path(deck_path: Option<&Path>, written: &str) -> Result<PathBuf, 
     Ok(path)
 }
 
+fn resolve_file(deck_path: Option<&Path>, written: &str) -> Result<PathBuf, OdeError> {
+    resolve_path(deck_path, written).map_err(|m| {
+        OdeError::InDeck(DefError {
+            pos: DefPos::Whole,
+            message: format!("ode: {m}"),
+        })
+    })
+}
+
 impl OdeSource {
-    /// The definition (read from its file for `File`), not yet compiled.
-    pub fn definition(
-        &self,
-        deck_path: Option<&Path>,
-    ) -> Result<(ProblemDef, Option<PathBuf>), OdeError> {
+    /// The problem file of a `File` source, resolved against the deck (`None` for `Inline`).
+    pub fn file(&self, deck_path: Option<&Path>) -> Option<Result<PathBuf, OdeError>> {
         match self {
-            OdeSource::Inline(def) => Ok((def.as_ref().clone(), None)),
-            OdeSource::File(written) => {
-                let file = resolve_path(deck_path, written).map_err(|m| {
-                    OdeError::InDeck(DefError {
-                        pos: DefPos::Whole,
-                        message: format!("ode: {m}"),
-                    })
-                })?;
-                let (_, mut def) = problem::read_def(&file).map_err(OdeError::InFile)?;
-                if def.name.is_empty() {
-                    def.name = Path::new(written)
-                        .file_stem()
-                        .map(|s| s.to_string_lossy().into_owned())
-                        .unwrap_or_default();
-                }
-                Ok((def, Some(file)))
-            }
+            OdeSource::File(written) => Some(resolve_file(deck_path, written)),
+            OdeSource::Inline(_) => None,
         }
     }
 
     /// Reads (for `File`) and compiles the problem.
     pub fn load(&self, deck_path: Option<&Path>) -> Result<LoadedOde, OdeError> {
-        let (def, file) = self.definition(deck_path)?;
-        let named = file
-            .clone()
-            .or_else(|| deck_path.map(Path::to_path_buf))
-            .unwrap_or_default();
-        let problem = def.compile(&named).map_err(|e| match &file {
-            // a fault inside a problem file: at its line and column there
-            Some(f) => OdeError::InFile(match crate::project_files::read_to_string(f) {
-                Ok(text) => problem::diagnostic_at(&text, "", f, &e),
-                Err(_) => Diagnostic::whole_file(f, e.message.clone()),
-            }),
-            None => OdeError::InDeck(e),
-        })?;
-        Ok(LoadedOde { def, problem, file })
+        match self {
+            OdeSource::Inline(def) => {
+                let named = deck_path.map(Path::to_path_buf).unwrap_or_default();
+                let problem = def.compile(&named).map_err(OdeError::InDeck)?;
+                Ok(LoadedOde {
+                    def: def.as_ref().clone(),
+                    problem,
+                    file: None,
+                })
+            }
+            OdeSource::File(written) => {
+                let file = resolve_file(deck_path, written)?;
+                let text = crate::project_files::read_to_string(&file).map_err(|e| {
+                    OdeError::InFile(Diagnostic::whole_file(
+                        &file,
+                        format!("cannot read problem: {e}"),
+                    ))
+                })?;
+                Self::from_file(&text, &file)
+            }
+        }
+    }
+
+    /// A problem file's text as the source it is (what a reload of the file gives).
+    pub fn from_file(text: &str, file: &Path) -> Result<LoadedOde, OdeError> {
+        let (def, problem) = problem::parse_file(text, file).map_err(OdeError::InFile)?;
+        Ok(LoadedOde {
+            def,
+            problem,
+            file: Some(file.to_path_buf()),
+        })
     }
 }
 
