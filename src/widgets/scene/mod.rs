@@ -68,9 +68,9 @@ pub struct SceneWidget {
     frames_rendered: u64,
     /// the generation of the scene's files the simulation was loaded at
     files_generation: u64,
-    /// the renderer's shader problems (`file:line:col: message`) as of the last save, read
-    /// from its techniques' holders; the last good pipelines keep drawing
-    shader_errors: Vec<String>,
+    /// the device and renderers this widget draws with, from its first frame: its shader
+    /// problems are read from the techniques' own holders when asked, never copied
+    gpu: Option<SceneGpu>,
     /// a frame has shown the slide with [`PREPARING_NOTE`] where the picture will be
     announced: bool,
 }
@@ -165,15 +165,16 @@ impl SceneWidget {
             last_time: None,
             frames_rendered: 0,
             files_generation: 0,
-            shader_errors: Vec::new(),
+            gpu: None,
             announced: false,
         }
     }
 
     /// After a save of the scene file or a shader: the scene file is re-read through its
-    /// holder (the last good scene stays when it does not parse) and the renderer's shader
-    /// errors are kept for the presenter.
+    /// holder (the last good scene stays when it does not parse); the renderer's shader errors
+    /// stay in its techniques' holders, where [`SlideWidget::problems`] reads them.
     fn reload_files(&mut self, gpu: &SceneGpu) {
+        self.gpu.get_or_insert_with(|| gpu.clone());
         let (Ok(path), Some(file)) = (&self.scene_path, &mut self.scene_file) else {
             return;
         };
@@ -182,7 +183,6 @@ impl SceneWidget {
             return;
         }
         self.files_generation = generation;
-        self.shader_errors = gpu.shader_errors(path);
         if file.reload() == Reloaded::Updated
             && let Some(scene) = file.value()
         {
@@ -409,7 +409,10 @@ impl SlideWidget for SceneWidget {
 
     fn problems(&self) -> Vec<String> {
         let mut out: Vec<String> = self.problem().into_iter().collect();
-        out.extend(self.shader_errors.iter().cloned());
+        // the last good pipelines keep drawing while a technique's shader is broken
+        if let (Some(gpu), Ok(path)) = (&self.gpu, &self.scene_path) {
+            out.extend(gpu.shader_errors(path));
+        }
         // a broken save while the last good scene is shown
         if self.sim.is_some()
             && let Some(d) = self.scene_file.as_ref().and_then(LiveFile::error)
