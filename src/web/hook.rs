@@ -5,8 +5,9 @@
 //! JSON, the numbers `export --data` writes: [`crate::app::plot_data`]), and `editorField`
 //! (where to click to type an equation, once `N` shows the editor) and `editing` (a field has
 //! the keyboard). For timing inside the page (no WebDriver round trips), `frames` logs the last
-//! painted frames, each `{ui, t, slide, plot}`: `performance.now()` once the app's `ui` for the frame
-//! returned (`ui`) and once it was painted (`t`, a microtask after eframe's paint), the 1-based slide, and
+//! painted frames, each `{start, ui, t, slide, plot}`: `performance.now()` when the frame's `ui`
+//! began (`start`: an input dispatched before it is in this frame), once it returned (`ui`) and
+//! once the frame was painted (`t`, a microtask after eframe's paint), the 1-based slide, and
 //! — while a test sets `trackPlot` — a hash of `plotData()`'s text, so a test sees which frame
 //! first showed new points.
 
@@ -35,6 +36,8 @@ fn parse_fragment(hash: &str) -> Option<usize> {
 pub struct Hook {
     window: web_sys::Window,
     object: js_sys::Object,
+    /// `(hook)`: notes when the frame's `ui` began.
+    begin_frame: js_sys::Function,
     /// `(hook, slide, plot)`: appends to `hook.frames` (see the module's doc).
     log_frame: js_sys::Function,
 }
@@ -55,10 +58,12 @@ impl Hook {
         set("frames", &js_sys::Array::new())?;
         set("trackPlot", &JsValue::FALSE)?;
         // the painted time: a microtask runs once eframe's frame callback (ui, then paint) returns
+        let begin_frame =
+            js_sys::Function::new_with_args("hook", "hook.frameStart = performance.now();");
         let log_frame = js_sys::Function::new_with_args(
             "hook, slide, plot",
             &format!(
-                "var e = {{ ui: performance.now(), t: null, slide: slide, plot: plot }};\n\
+                "var e = {{ start: hook.frameStart, ui: performance.now(), t: null, slide: slide, plot: plot }};\n\
                  hook.frames.push(e);\n\
                  if (hook.frames.length > {FRAMES_KEPT}) hook.frames.shift();\n\
                  queueMicrotask(function () {{ e.t = performance.now(); }});"
@@ -91,6 +96,7 @@ impl Hook {
         Ok(Self {
             window: window.clone(),
             object,
+            begin_frame,
             log_frame,
         })
     }
@@ -103,6 +109,11 @@ impl Hook {
             .window
             .add_event_listener_with_callback("hashchange", wake.as_ref().unchecked_ref());
         wake.forget();
+    }
+
+    /// Called when the frame's `ui` begins (its time goes into the frame's log entry).
+    fn begin_frame(&self) {
+        let _ = self.begin_frame.call1(&JsValue::NULL, &self.object);
     }
 
     /// Appends this frame to `frames` (called once the app's `ui` returned, before the paint).
@@ -215,6 +226,7 @@ impl eframe::App for Player {
         let Ok(mut app) = app.try_borrow_mut() else {
             return;
         };
+        self.hook.begin_frame();
         self.follow_fragment(&mut app);
         app.ui(ui, frame);
         let index = app.nav().index();

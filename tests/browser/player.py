@@ -194,6 +194,73 @@ def time_drag(d, args, figures, tag, repeats=12):
     figures[tag + "_drag_to_new_plot_frame_ms"] = latency_figures(dragging)
 
 
+# A continuous drag, as a mouse sends it: `n` moves `every` ms apart (each a new position, so
+# each frame that takes one solves from a new start point), the button held. For each move, the
+# first frame whose `ui` began after it (so its input had the move) and painted a plot unlike
+# the frames before the move: the move's latency is that frame's painted time minus the move's.
+IN_PAGE_CONTINUOUS_DRAG = """
+var x = arguments[0], y = arguments[1], n = arguments[2], every = arguments[3];
+var done = arguments[arguments.length - 1];
+var h = window.lectern, canvas = document.getElementById("lectern-canvas");
+var frames = h.frames, first = frames.length, moves = [];
+function o(px) {
+  return {clientX: px, clientY: y, screenX: px, screenY: y, button: 0, buttons: 1, pointerId: 1,
+          pointerType: "mouse", isPrimary: true, bubbles: true, cancelable: true};
+}
+function move(i) {
+  moves.push(performance.now());
+  canvas.dispatchEvent(new MouseEvent("mousemove", o(x + 2 * (i + 1))));
+  if (i + 1 < n) { setTimeout(function () { move(i + 1); }, every); return; }
+  waitForLast();
+}
+// until a frame that began after the last move has been painted (or 10 s)
+function waitForLast() {
+  var last = moves[moves.length - 1], painted = frames.slice(first).some(function (e) {
+    return e.start > last && e.t !== null;
+  });
+  if (painted || performance.now() - last > 10000) { finish(); return; }
+  setTimeout(waitForLast, 5);
+}
+function finish() {
+  var log = frames.slice(first), out = [];
+  moves.forEach(function (t) {
+    var before = null, shown = null;
+    for (var k = 0; k < log.length; k++) {
+      var e = log[k];
+      if (e.start === undefined || e.t === null) continue;
+      if (e.start <= t) { before = e.plot; continue; }
+      if (e.plot !== null && e.plot !== before) { shown = e.t - t; break; }
+    }
+    if (shown !== null) out.push(shown);
+  });
+  done({latencies: out, moves: moves.length, frames: log.length,
+        seconds: (moves[moves.length - 1] - moves[0]) / 1000});
+}
+move(0);
+"""
+
+
+def time_continuous_drag(d, args, figures, tag, moves=40, every_ms=16):
+    """A drag across the slope field at a mouse's pace: the median latency of its moves (see
+    IN_PAGE_CONTINUOUS_DRAG); every move must reach a frame with new points."""
+    d.execute_script("location.hash = '#/%d'" % args.slope)
+    wait_for(d, "return window.lectern.slide() === %d" % args.slope, 10)
+    d.execute_script("window.lectern.trackPlot = true")
+    w, h = (int(v) for v in args.size.split("x"))
+    x, y = 0.5 * w, 0.6 * h
+    assert d.execute_async_script(IN_PAGE_DRAG, x, y, "down") is not None, "no frame after a press"
+    # egui starts a drag once the pointer has moved: the first move only does that
+    d.execute_async_script(IN_PAGE_DRAG, x + 1, y, "move")
+    r = d.execute_async_script(IN_PAGE_CONTINUOUS_DRAG, x + 1, y, moves, every_ms)
+    d.execute_async_script(IN_PAGE_DRAG, x, y, "up")
+    d.execute_script("window.lectern.trackPlot = false")
+    lat = r["latencies"]
+    assert len(lat) == moves, "%d of %d moves reached a frame with new points" % (len(lat), moves)
+    figures[tag + "_continuous_drag_to_new_plot_frame_ms"] = {
+        "median": round(median(lat), 1), "min": round(min(lat), 1), "max": round(max(lat), 1),
+        "n": len(lat), "frames": r["frames"], "moves_per_s": round(moves / max(r["seconds"], 1e-3), 1)}
+
+
 def walk_all_slides(d, args, figures, tag):
     """The "Done when" walk: every slide paging skips by the keyboard, the skipped ones (the
     optional project slides) by their `#/N` link; each painted, no console errors."""
@@ -373,6 +440,7 @@ def check_page(args, url, size, figures, tag):
             work_precision_link(d, args, figures, tag, url)
             time_keys(d, args, figures, tag)
             time_drag(d, args, figures, tag)
+            time_continuous_drag(d, args, figures, tag)
             # and with the self-study notes open under the slide (`N`): a heavier frame
             key(d, "n")
             time_keys(d, args, figures, tag + "_notes_open")
