@@ -44,6 +44,14 @@ impl SlideState {
         spec: &WidgetSpec,
         deck_path: Option<&std::path::Path>,
     ) -> &mut dyn SlideWidget {
+        use std::collections::hash_map::Entry;
+        let entry = match self.widgets.entry(path.to_vec()) {
+            // every frame: nothing to make, no file touched
+            Entry::Occupied(slot) if slot.get().spec == *spec => {
+                return slot.into_mut().widget.as_mut();
+            }
+            entry => entry,
+        };
         if let Some(source) = spec.ode() {
             self.problem_files.borrow_mut().open(source, deck_path);
         }
@@ -52,24 +60,21 @@ impl SlideState {
             deck_path,
             problems: Some(&problems),
         };
-        let slot = self
-            .widgets
-            .entry(path.to_vec())
-            .and_modify(|slot| {
-                if slot.spec != *spec {
-                    let mut widget = spec.instantiate(at);
-                    let old_file = file_values(&slot.spec, at);
-                    carry_tweaks(&old_file, slot.widget.as_mut(), widget.as_mut());
-                    *slot = WidgetSlot {
-                        spec: spec.clone(),
-                        widget,
-                    };
-                }
-            })
-            .or_insert_with(|| WidgetSlot {
-                spec: spec.clone(),
-                widget: spec.instantiate(at),
-            });
+        let mut fresh = WidgetSlot {
+            spec: spec.clone(),
+            widget: spec.instantiate(at),
+        };
+        let slot = match entry {
+            // the spec changed in the deck: made again, the lecturer's tweaks carried over
+            Entry::Occupied(mut slot) => {
+                let old = slot.get_mut();
+                let old_file = file_values(&old.spec, at);
+                carry_tweaks(&old_file, old.widget.as_mut(), fresh.widget.as_mut());
+                *old = fresh;
+                slot.into_mut()
+            }
+            Entry::Vacant(slot) => slot.insert(fresh),
+        };
         slot.widget.as_mut()
     }
 
