@@ -90,6 +90,30 @@ fn serve(dir: &Path) -> (Server, u16) {
     (Server(child), port)
 }
 
+/// The bundled lecture's page, exported once for the browser tests of this file and of
+/// [`super::web_scene`] (into `target/`, where it stays for a look after a failure); the pages
+/// are only read.
+pub(crate) fn exported_lecture() -> &'static Path {
+    static PAGE: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
+    PAGE.get_or_init(|| {
+        let page = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/web-test/page");
+        let _ = std::fs::remove_dir_all(&page);
+        let started = std::time::Instant::now();
+        let out = lectern()
+            .args(["export", "slides/lecture.ron", "--web"])
+            .arg(&page)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "export --web failed:\n{stderr}");
+        eprintln!(
+            "{stderr}export --web took {:.1} s",
+            started.elapsed().as_secs_f64()
+        );
+        page
+    })
+}
+
 pub(crate) fn slide_number(deck: &lectern::deck::Deck, key: &str) -> usize {
     1 + deck.slides.iter().position(|s| s.key() == key).unwrap()
 }
@@ -132,20 +156,8 @@ fn the_exported_page_pages_plots_and_types_in_chromium() {
     }
     let py = python();
     let tmp = tempfile::tempdir().unwrap();
-    let page = tmp.path().join("page");
+    let page = exported_lecture();
     let deck_path = Path::new(env!("CARGO_MANIFEST_DIR")).join("slides/lecture.ron");
-    let started = std::time::Instant::now();
-    let out = lectern()
-        .args(["export", "slides/lecture.ron", "--web"])
-        .arg(&page)
-        .output()
-        .unwrap();
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(out.status.success(), "export --web failed:\n{stderr}");
-    eprintln!(
-        "{stderr}export --web took {:.1} s",
-        started.elapsed().as_secs_f64()
-    );
     for f in ["index.html", "lectern.js", "player.js", "bundle.js"] {
         assert!(page.join(f).is_file(), "{f} missing");
     }
@@ -153,7 +165,7 @@ fn the_exported_page_pages_plots_and_types_in_chromium() {
     let deck = load_deck(&deck_path).unwrap();
     let export_png = lectern::app::render_slide_png(&deck, 0, SIZE).unwrap();
     let expect = expected_csv(tmp.path());
-    let (_server, port) = serve(&page);
+    let (_server, port) = serve(page);
     let skipped: Vec<String> = (deck.slides.iter().enumerate())
         .filter(|(_, s)| s.skip)
         .map(|(i, _)| (i + 1).to_string())

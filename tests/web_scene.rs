@@ -2,34 +2,12 @@
 //! [`super::web_player`]: a slide's live Scene widget against `render-scene`, a toggle, an orbit,
 //! `Tab` for scene mode, and a browser without WebGL2, which gets a note and the exported still.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
-use std::sync::OnceLock;
 
 use lectern::deck::load_deck;
 
-use crate::web_player::{SIZE, browser_missing, lectern, python, slide_number};
-
-/// The bundled lecture's page, exported once for this file's tests (into `target/`, where it
-/// stays for a look after a failure).
-fn exported_lecture() -> &'static Path {
-    static PAGE: OnceLock<PathBuf> = OnceLock::new();
-    PAGE.get_or_init(|| {
-        let page = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/web-scene-test/page");
-        let _ = std::fs::remove_dir_all(&page);
-        let out = lectern()
-            .args(["export", "slides/lecture.ron", "--web"])
-            .arg(&page)
-            .output()
-            .unwrap();
-        assert!(
-            out.status.success(),
-            "export --web failed:\n{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-        page
-    })
-}
+use crate::web_player::{SIZE, browser_missing, exported_lecture, python, slide_number};
 
 /// The page's Scene widget against render-scene's frame (SwiftShader's WebGL2 against
 /// lavapipe's Vulkan, the widget's picture also resampled once more by egui): mean absolute
